@@ -1,0 +1,27 @@
+# Consumes the installed package from an out-of-tree project (test/consumer/).
+#   BUILD_DIR set:   install that build tree (the one under test) into a temporary prefix.
+#   BUILD_DIR empty: configure and build the library afresh with BUILD_SHARED_LIBS=${BUILD_SHARED}
+#                    (so the suite checks the other library kind too), then install it.
+# Then configure, build and run the consumer against the prefix.
+file(REMOVE_RECURSE ${WORK_DIR})
+set(prefix ${WORK_DIR}/prefix)
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "failed (${rc}): ${ARGN}")
+  endif()
+endfunction()
+if(NOT BUILD_DIR)
+  set(BUILD_DIR ${WORK_DIR}/lib-build)
+  run(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${BUILD_DIR} -G ${GENERATOR}
+      -DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=${BUILD_SHARED}
+      -DFSE_BUILD_TESTS=OFF -DFSE_BUILD_BENCH=OFF)
+  run(${CMAKE_COMMAND} --build ${BUILD_DIR} --parallel 2)
+endif()
+run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/test/consumer -B ${WORK_DIR}/consumer-build
+    -G ${GENERATOR} -DCMAKE_PREFIX_PATH=${prefix} "-DCMAKE_CXX_FLAGS=${CONSUMER_FLAGS}"
+    "-DCMAKE_EXE_LINKER_FLAGS=${CONSUMER_FLAGS}")
+run(${CMAKE_COMMAND} --build ${WORK_DIR}/consumer-build)
+set(ENV{LD_LIBRARY_PATH} "${prefix}/lib:${prefix}/lib64:$ENV{LD_LIBRARY_PATH}")
+run(${WORK_DIR}/consumer-build/consumer)

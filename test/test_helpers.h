@@ -1,0 +1,80 @@
+#ifndef FCL_SUPERELLIPSOID_TEST_TEST_HELPERS_H
+#define FCL_SUPERELLIPSOID_TEST_TEST_HELPERS_H
+
+// Shared test support: scalar-dependent tolerances, seeded sampling, and an independent
+// long-double reference of the gauge (written from MATH.md, not from src/).
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "fcl_superellipsoid/superellipsoid.h"
+
+namespace fcl_superellipsoid {
+namespace test {
+
+using Scalars = ::testing::Types<float, double>;
+
+/// Relative tolerance for quantities computed with a handful of pow() calls: a few hundred
+/// ulps of the scalar (pow of a number near 1 to a large exponent amplifies rounding).
+template <typename S>
+S evalTolerance() {
+  return std::is_same<S, float>::value ? S(2e-5) : S(1e-12);
+}
+
+/// The exponent grid of the hard cases, from 0.02 to 1.98.
+inline std::vector<double> exponentGrid() { return {0.02, 0.1, 0.3, 0.65, 1.0, 1.35, 1.7, 1.9, 1.98}; }
+
+/// Radii with aspect ratios up to 1000:1 (and the extreme scales 1e-4, 1e4).
+inline std::vector<std::array<double, 3>> radiiSet() {
+  return {{1, 1, 1}, {3.5, 3.0, 2.0}, {1000, 1, 1}, {1, 1000, 1}, {1, 1, 1e-3}, {1e-4, 2e-4, 1.5e-4},
+          {1e4, 0.5e4, 2e4}};
+}
+
+/// Independent reference of G = F^(ε2/2) in long double, straight from the formula
+/// F = (|x/a1|^(2/ε1) + |y/a2|^(2/ε1))^(ε1/ε2) + |z/a3|^(2/ε2), with the coordinates first
+/// divided by the largest |x_i/a_i| (G is 1-homogeneous) so that nothing overflows.
+inline long double referenceGauge(const std::array<long double, 3>& a, long double e1, long double e2,
+                                  const std::array<long double, 3>& x) {
+  long double u[3], m = 0;
+  for (int i = 0; i < 3; ++i) {
+    u[i] = std::fabs(x[i] / a[i]);
+    m = std::max(m, u[i]);
+  }
+  if (m == 0) return 0;
+  for (long double& ui : u) ui /= m;
+  const long double xy = std::pow(u[0], 2 / e1) + std::pow(u[1], 2 / e1);
+  const long double f = std::pow(xy, e1 / e2) + std::pow(u[2], 2 / e2);
+  return m * std::pow(f, e2 / 2);
+}
+
+template <typename S>
+long double referenceGauge(const Superellipsoid<S>& s, const Vector3<S>& x) {
+  return referenceGauge({s.radii()[0], s.radii()[1], s.radii()[2]}, s.eps1(), s.eps2(),
+                        {x[0], x[1], x[2]});
+}
+
+/// Uniform angles of the parametric surface (paper Eq. 4), seeded.
+struct AngleSampler {
+  explicit AngleSampler(unsigned seed) : rng(seed) {}
+  std::pair<double, double> operator()() {
+    std::uniform_real_distribution<double> eta(-M_PI / 2, M_PI / 2), omega(-M_PI, M_PI);
+    return {eta(rng), omega(rng)};
+  }
+  std::mt19937 rng;
+};
+
+template <typename S>
+std::string describe(const Superellipsoid<S>& s) {
+  std::ostringstream out;
+  out << s;
+  return out.str();
+}
+
+}  // namespace test
+}  // namespace fcl_superellipsoid
+
+#endif  // FCL_SUPERELLIPSOID_TEST_TEST_HELPERS_H

@@ -1,0 +1,249 @@
+// The shape's own mathematics: surface, gauge, gradient, volume, inertia, validation.
+
+#include "fcl_superellipsoid/superellipsoid.h"
+
+#include <sstream>
+#include <stdexcept>
+
+#include <fcl/geometry/shape/ellipsoid.h>
+
+#include "test_helpers.h"
+
+namespace fcl_superellipsoid {
+namespace {
+
+using test::evalTolerance;
+
+template <typename S>
+class SuperellipsoidTest : public ::testing::Test {};
+TYPED_TEST_SUITE(SuperellipsoidTest, test::Scalars);
+
+TYPED_TEST(SuperellipsoidTest, ParametricPointsSatisfyTheImplicitEquation) {
+  using S = TypeParam;
+  test::AngleSampler angles(1);
+  for (const auto& a : test::radiiSet()) {
+    for (double e1 : test::exponentGrid()) {
+      for (double e2 : test::exponentGrid()) {
+        const Superellipsoid<S> shape{S(a[0]), S(a[1]), S(a[2]), S(e1), S(e2)};
+        SCOPED_TRACE(test::describe(shape));
+        for (int k = 0; k < 40; ++k) {
+          const auto [eta, omega] = angles();
+          const Vector3<S> p = shape.surfacePoint(S(eta), S(omega));
+          // Ground truth is independent: the long-double gauge of the point as computed.
+          EXPECT_NEAR(double(test::referenceGauge(shape, p)), 1.0, 4 * evalTolerance<S>());
+          EXPECT_NEAR(shape.gauge(p), S(1), 4 * evalTolerance<S>());
+          ASSERT_TRUE(std::isfinite(shape.gauge(p)));
+        }
+      }
+    }
+  }
+}
+
+TYPED_TEST(SuperellipsoidTest, GaugeMatchesTheIndependentReferenceOffTheSurface) {
+  using S = TypeParam;
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (const auto& a : test::radiiSet()) {
+    for (double e1 : test::exponentGrid()) {
+      for (double e2 : test::exponentGrid()) {
+        const Superellipsoid<S> shape{S(a[0]), S(a[1]), S(a[2]), S(e1), S(e2)};
+        SCOPED_TRACE(test::describe(shape));
+        for (double scale : {1e-12, 1e-3, 0.5, 1.0, 7.0, 1e6}) {
+          const Vector3<S> x(S(unit(rng) * a[0] * scale), S(unit(rng) * a[1] * scale),
+                             S(unit(rng) * a[2] * scale));
+          const long double ref = test::referenceGauge(shape, x);
+          const S g = shape.gauge(x);
+          ASSERT_TRUE(std::isfinite(g));
+          EXPECT_NEAR(double(g / ref), 1.0, 4 * evalTolerance<S>()) << "scale " << scale;
+        }
+      }
+    }
+  }
+}
+
+TYPED_TEST(SuperellipsoidTest, ImplicitFunctionIsOneOnTheSurfaceAndAPowerOfTheGauge) {
+  using S = TypeParam;
+  const Superellipsoid<S> shape{S(1), S(2), S(0.5), S(0.4), S(1.6)};
+  const Vector3<S> p = shape.surfacePoint(S(0.3), S(2.0));
+  EXPECT_NEAR(shape.implicitFunction(p), S(1), 4 * evalTolerance<S>());
+  const Vector3<S> x(S(0.3), S(-1.1), S(0.2));
+  EXPECT_NEAR(shape.implicitFunction(x) / std::pow(shape.gauge(x), S(2) / shape.eps2()), S(1),
+              4 * evalTolerance<S>());
+}
+
+TYPED_TEST(SuperellipsoidTest, NormalAgreesWithAFiniteDifferenceGradient) {
+  using S = TypeParam;
+  test::AngleSampler angles(3);
+  for (const auto& a : test::radiiSet()) {
+    for (double e1 : test::exponentGrid()) {
+      for (double e2 : test::exponentGrid()) {
+        const Superellipsoid<S> shape{S(a[0]), S(a[1]), S(a[2]), S(e1), S(e2)};
+        SCOPED_TRACE(test::describe(shape));
+        const std::array<long double, 3> ra{a[0], a[1], a[2]};
+        for (int k = 0; k < 10; ++k) {
+          const auto [eta, omega] = angles();
+          const Vector3<S> p = shape.surfacePoint(S(eta), S(omega));
+          // Central differences of the long-double reference gauge, with a step of 1e-6 × |p_i|
+          // per component: the gradient of G varies on the scale of the distance to the
+          // coordinate plane (a cusp there as ε → 2), so a step must not cross the plane.
+          long double fd[3];
+          for (int i = 0; i < 3; ++i) {
+            const long double h = 1e-6L * std::fabs((long double)p[i]) + 1e-30L;
+            std::array<long double, 3> xp{p[0], p[1], p[2]}, xm{p[0], p[1], p[2]};
+            xp[i] += h;
+            xm[i] -= h;
+            fd[i] = (test::referenceGauge(ra, e1, e2, xp) - test::referenceGauge(ra, e1, e2, xm)) / (2 * h);
+          }
+          const long double fd_norm = std::sqrt(fd[0] * fd[0] + fd[1] * fd[1] + fd[2] * fd[2]);
+          const Vector3<S> n = shape.normal(p);
+          const Vector3<S> grad = shape.gaugeGradient(p);
+          EXPECT_NEAR(n.norm(), S(1), 4 * evalTolerance<S>());
+          for (int i = 0; i < 3; ++i) {
+            // Finite differences are only as good as the gradient is smooth over the step;
+            // for ε near 2 the gradient has a cusp on the coordinate planes.
+            EXPECT_NEAR(double(n[i]), double(fd[i] / fd_norm), (std::is_same<S, float>::value ? 1e-4 : 1e-6))
+                << "component " << i << " at " << p.transpose();
+            EXPECT_NEAR(double(grad[i]), double(fd[i]),
+                        (std::is_same<S, float>::value ? 1e-4 : 1e-6) * double(fd_norm))
+                << "component " << i;
+          }
+        }
+      }
+    }
+  }
+}
+
+TYPED_TEST(SuperellipsoidTest, ImplicitGradientIsTheScaledGaugeGradient) {
+  using S = TypeParam;
+  const Superellipsoid<S> shape{S(1.5), S(0.7), S(1.2), S(0.8), S(1.3)};
+  const Vector3<S> x(S(0.4), S(-0.3), S(0.9));
+  const S p2 = S(2) / shape.eps2();
+  const Vector3<S> expected = p2 * std::pow(shape.gauge(x), p2 - 1) * shape.gaugeGradient(x);
+  EXPECT_TRUE(shape.implicitGradient(x).isApprox(expected, 4 * evalTolerance<S>()));
+}
+
+TYPED_TEST(SuperellipsoidTest, GradientAndNormalStayFiniteAtExtremes) {
+  using S = TypeParam;
+  for (double e1 : test::exponentGrid()) {
+    for (double e2 : test::exponentGrid()) {
+      const Superellipsoid<S> shape{S(2), S(1), S(0.5), S(e1), S(e2)};
+      for (const Vector3<S>& x : {Vector3<S>(S(1e-12), S(0), S(0)), Vector3<S>(S(0), S(0), S(1e6)),
+                                  Vector3<S>(S(1e6), S(-1e6), S(3e5)), Vector3<S>(S(0), S(0), S(0)),
+                                  Vector3<S>(S(1e-12), S(1e-12), S(1e-12))}) {
+        const Vector3<S> n = shape.normal(x);
+        ASSERT_TRUE(n.allFinite()) << x.transpose();
+        EXPECT_NEAR(n.norm(), S(1), 4 * evalTolerance<S>());
+        ASSERT_TRUE(std::isfinite(shape.radialDistance(x)));
+        ASSERT_TRUE(shape.gaugeGradient(x).allFinite());
+      }
+    }
+  }
+}
+
+TYPED_TEST(SuperellipsoidTest, RadialDistanceAndProjection) {
+  using S = TypeParam;
+  const Superellipsoid<S> sphere{S(2), S(2), S(2), S(1), S(1)};
+  EXPECT_NEAR(sphere.radialDistance(Vector3<S>(S(3), S(4), S(0))), S(3), 4 * evalTolerance<S>());
+  EXPECT_NEAR(sphere.radialDistance(Vector3<S>(S(0), S(0), S(-0.5))), S(-1.5),
+              4 * evalTolerance<S>());
+  const Superellipsoid<S> shape{S(3), S(1), S(2), S(0.3), S(1.7)};
+  EXPECT_EQ(shape.radialDistance(Vector3<S>::Zero()), S(-1));  // −(smallest radius)
+  const Vector3<S> x(S(0.2), S(5), S(-1));
+  const Vector3<S> p = shape.radialProjection(x);
+  EXPECT_NEAR(shape.gauge(p), S(1), 4 * evalTolerance<S>());
+  EXPECT_NEAR(p.normalized().dot(x.normalized()), S(1), 4 * evalTolerance<S>());
+  EXPECT_NEAR(shape.radialDistance(x), (x - p).norm(), 10 * evalTolerance<S>() * x.norm());
+  EXPECT_TRUE(shape.contains(p * S(0.999)));
+  EXPECT_FALSE(shape.contains(p * S(1.001)));
+}
+
+TYPED_TEST(SuperellipsoidTest, VolumeAndInertiaMatchTheEllipsoidExactly) {
+  using S = TypeParam;
+  const Superellipsoid<S> unit{S(1), S(1), S(1), S(1), S(1)};
+  EXPECT_NEAR(unit.computeVolume(), S(4 * M_PI / 3), 4 * evalTolerance<S>());
+  EXPECT_TRUE(unit.computeMomentofInertia().isApprox(
+      fcl::Matrix3<S>(fcl::Vector3<S>::Constant(S(8 * M_PI / 15)).asDiagonal()),
+      4 * evalTolerance<S>()));
+  // FCL's own Ellipsoid is an independent implementation of the ε = (1, 1) case.
+  const fcl::Ellipsoid<S> ellipsoid(S(1.5), S(0.5), S(2.5));
+  const Superellipsoid<S> shape{S(1.5), S(0.5), S(2.5), S(1), S(1)};
+  EXPECT_NEAR(shape.computeVolume() / ellipsoid.computeVolume(), S(1), 4 * evalTolerance<S>());
+  EXPECT_TRUE(shape.computeMomentofInertia().isApprox(ellipsoid.computeMomentofInertia(),
+                                                      4 * evalTolerance<S>()));
+  EXPECT_TRUE(shape.computeCOM().isZero());
+}
+
+// Seeded Monte Carlo over the bounding box, with the long-double reference gauge as the
+// membership test; the tolerance is 5 standard errors of the estimate.
+TYPED_TEST(SuperellipsoidTest, VolumeAndInertiaMatchMonteCarloIntegration) {
+  using S = TypeParam;
+  const std::vector<std::array<double, 5>> shapes = {
+      {1, 1, 1, 0.3, 0.3}, {1, 2, 0.5, 1.0, 0.3}, {1, 1, 1, 1.7, 1.7}, {2, 1, 1.5, 0.1, 1.9}, {0.7, 1.3, 1, 1.9, 0.1}};
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (const auto& c : shapes) {
+    const Superellipsoid<S> shape{S(c[0]), S(c[1]), S(c[2]), S(c[3]), S(c[4])};
+    SCOPED_TRACE(test::describe(shape));
+    const int n = 400000;
+    const double box = 8 * c[0] * c[1] * c[2];
+    double hits = 0, ixx = 0, iyy = 0, izz = 0, ixx2 = 0, izz2 = 0;
+    for (int k = 0; k < n; ++k) {
+      const double x = unit(rng) * c[0], y = unit(rng) * c[1], z = unit(rng) * c[2];
+      if (test::referenceGauge({c[0], c[1], c[2]}, c[3], c[4], {x, y, z}) > 1) continue;
+      hits += 1;
+      ixx += y * y + z * z;
+      iyy += x * x + z * z;
+      izz += x * x + y * y;
+      ixx2 += (y * y + z * z) * (y * y + z * z);
+      izz2 += (x * x + y * y) * (x * x + y * y);
+    }
+    const double f = hits / n;
+    const double volume_mc = box * f;
+    const double volume_se = box * std::sqrt(f * (1 - f) / n);
+    EXPECT_NEAR(shape.computeVolume(), volume_mc, 5 * volume_se);
+    const auto inertia = shape.computeMomentofInertia();
+    const double ixx_mc = box * ixx / n, izz_mc = box * izz / n;
+    const double ixx_se = box * std::sqrt((ixx2 / n - (ixx / n) * (ixx / n)) / n);
+    const double izz_se = box * std::sqrt((izz2 / n - (izz / n) * (izz / n)) / n);
+    EXPECT_NEAR(inertia(0, 0), ixx_mc, 5 * ixx_se);
+    EXPECT_NEAR(inertia(1, 1), box * iyy / n, 5 * std::max(ixx_se, izz_se) * 2);
+    EXPECT_NEAR(inertia(2, 2), izz_mc, 5 * izz_se);
+    EXPECT_EQ(inertia(0, 1), S(0));
+  }
+}
+
+TYPED_TEST(SuperellipsoidTest, InvalidParametersThrowNamingTheValue) {
+  using S = TypeParam;
+  const S nan = std::numeric_limits<S>::quiet_NaN();
+  const S inf = std::numeric_limits<S>::infinity();
+  struct Case {
+    std::array<S, 5> p;
+    std::string name, value;
+  };
+  const std::vector<Case> cases = {
+      {{S(-1), 1, 1, 1, 1}, "radius a1", "-1"},   {{1, S(0), 1, 1, 1}, "radius a2", "0"},
+      {{1, 1, nan, 1, 1}, "radius a3", "nan"},    {{inf, 1, 1, 1, 1}, "radius a1", "inf"},
+      {{1, 1, 1, S(0), 1}, "exponent eps1", "0"}, {{1, 1, 1, S(2), 1}, "exponent eps1", "2"},
+      {{1, 1, 1, 1, S(2.5)}, "exponent eps2", "2.5"}, {{1, 1, 1, 1, S(-0.1)}, "exponent eps2", "-0.1"},
+      {{1, 1, 1, nan, 1}, "exponent eps1", "nan"}, {{1, 1, 1, 1, inf}, "exponent eps2", "inf"}};
+  for (const Case& c : cases) {
+    try {
+      Superellipsoid<S> shape(c.p[0], c.p[1], c.p[2], c.p[3], c.p[4]);
+      ADD_FAILURE() << "no exception for " << c.name << " = " << c.value;
+    } catch (const std::invalid_argument& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(c.name), std::string::npos) << what;
+      EXPECT_NE(what.find("got " + c.value), std::string::npos) << what;
+    }
+  }
+}
+
+TYPED_TEST(SuperellipsoidTest, StreamsItsParameters) {
+  using S = TypeParam;
+  std::ostringstream out;
+  out << Superellipsoid<S>(S(1), S(2), S(3), S(0.5), S(1.5));
+  EXPECT_EQ(out.str(), "Superellipsoid(a=(1, 2, 3), eps1=0.5, eps2=1.5)");
+}
+
+}  // namespace
+}  // namespace fcl_superellipsoid
