@@ -2,7 +2,7 @@
 # Installs the Debian packages the project needs, if any is missing. Needs root (apt-get).
 set -euo pipefail
 packages=(cmake g++ make libfcl-dev libccd-dev libeigen3-dev liboctomap-dev libgtest-dev
-          libbenchmark-dev)
+          libbenchmark-dev libcli11-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

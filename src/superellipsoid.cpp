@@ -7,7 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "gauge_kernel.h"
+#include "nested_norm.h"
 
 namespace fcl_superellipsoid {
 namespace {
@@ -51,8 +51,7 @@ Superellipsoid<S>::Superellipsoid(const Vector3<S>& radii, S eps1, S eps2)
 
 template <typename S>
 S Superellipsoid<S>::gauge(const Vector3<S>& p_S) const {
-  const detail::GaugeParams<S> c(*this);
-  return detail::gaugeOfScaled(c, Vector3<S>(p_S.cwiseAbs().cwiseProduct(c.inv_a)));
+  return detail::NestedNorm<S>::gauge(*this).value(p_S.cwiseAbs());
 }
 
 template <typename S>
@@ -62,15 +61,11 @@ S Superellipsoid<S>::implicitFunction(const Vector3<S>& p_S) const {
 
 template <typename S>
 Vector3<S> Superellipsoid<S>::gaugeGradient(const Vector3<S>& p_S) const {
-  const detail::GaugeParams<S> c(*this);
-  const auto e =
-      detail::gaugeAndGradientOfScaled(c, Vector3<S>(p_S.cwiseAbs().cwiseProduct(c.inv_a)));
-  Vector3<S> grad;
+  Vector3<S> g = detail::NestedNorm<S>::gauge(*this).evaluate(p_S.cwiseAbs(), false).gradient;
   for (int i = 0; i < 3; ++i) {
-    const S gi = e.dG_du[i] * c.inv_a[i];
-    grad[i] = p_S[i] < S(0) ? -gi : gi;
+    if (p_S[i] < S(0)) g[i] = -g[i];  // reflect back out of the first octant
   }
-  return grad;
+  return g;
 }
 
 template <typename S>

@@ -34,6 +34,14 @@ inline std::vector<std::array<double, 3>> radiiSet() {
           {1e4, 0.5e4, 2e4}};
 }
 
+/// True for a cigar-like shape: one radius more than 5× the middle one. (A flat, disk-like
+/// shape, one radius 1000× smaller, is not elongated in this sense.)
+inline bool isElongated(const std::array<double, 3>& a) {
+  std::array<double, 3> s = a;
+  std::sort(s.begin(), s.end());
+  return s[2] > 5 * s[1];
+}
+
 /// Independent reference of G = F^(ε2/2) in long double, straight from the formula
 /// F = (|x/a1|^(2/ε1) + |y/a2|^(2/ε1))^(ε1/ε2) + |z/a3|^(2/ε2), with the coordinates first
 /// divided by the largest |x_i/a_i| (G is 1-homogeneous) so that nothing overflows.

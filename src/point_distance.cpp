@@ -1,0 +1,107 @@
+#include "fcl_superellipsoid/point_distance.h"
+
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+#include "solvers.h"
+
+namespace fcl_superellipsoid {
+namespace {
+
+template <typename T>
+[[noreturn]] void throwInvalid(const std::string& what, const T& value) {
+  std::ostringstream msg;
+  msg << std::setprecision(17) << "pointDistance: " << what << ", got " << value;
+  throw std::invalid_argument(msg.str());
+}
+
+template <typename S>
+void validate(const Vector3<S>& p, const DistanceOptions<S>& options) {
+  if (!p.allFinite()) {
+    std::ostringstream v;
+    v << "(" << p[0] << ", " << p[1] << ", " << p[2] << ")";
+    throwInvalid("the query point must be finite", v.str());
+  }
+  if (!(std::isfinite(options.tolerance) && options.tolerance > S(0))) {
+    throwInvalid("options.tolerance must be finite and > 0", options.tolerance);
+  }
+  if (options.max_iterations < 1) {
+    throwInvalid("options.max_iterations must be >= 1", options.max_iterations);
+  }
+}
+
+}  // namespace
+
+const char* toString(DistanceMethod method) {
+  switch (method) {
+    case DistanceMethod::kRadial: return "Radial";
+    case DistanceMethod::kPaper: return "Paper";
+    case DistanceMethod::kExact: return "Exact";
+  }
+  return "unknown";
+}
+
+template <typename S>
+PointDistanceResult<S> pointDistance(const Superellipsoid<S>& shape,
+                                     const detail::NonDeduced<Vector3<S>>& p_SQ,
+                                     const detail::NonDeduced<DistanceOptions<S>>& options) {
+  validate(p_SQ, options);
+  // Below a few ulps of the query's magnitude no method can resolve the error estimate.
+  const S floor = S(8) * std::numeric_limits<S>::epsilon() * (p_SQ.norm() + shape.size());
+  const detail::Query<S> q{shape, p_SQ, options.tolerance * shape.size() + floor,
+                           options.max_iterations};
+  // At the exact centre the radial direction is undefined, so every method answers with the
+  // Exact solver's centre search (documented in point_distance.h).
+  if (p_SQ.isZero(S(0))) return detail::solveExact(q);
+  switch (options.method) {
+    case DistanceMethod::kRadial: return detail::solveRadial(q);
+    case DistanceMethod::kPaper: return detail::solvePaper(q);
+    case DistanceMethod::kExact: return detail::solveExact(q);
+  }
+  throwInvalid("options.method is not a DistanceMethod", static_cast<int>(options.method));
+}
+
+template <typename S>
+PointDistanceResult<S> pointDistance(const Superellipsoid<S>& shape,
+                                     const detail::NonDeduced<fcl::Transform3<S>>& X_WS,
+                                     const detail::NonDeduced<Vector3<S>>& p_WQ,
+                                     const detail::NonDeduced<DistanceOptions<S>>& options) {
+  validate(p_WQ, options);
+  const Vector3<S> p_SQ = X_WS.inverse(Eigen::Isometry) * p_WQ;
+  PointDistanceResult<S> r = pointDistance<S>(shape, p_SQ, options);
+  r.nearest_point = X_WS * r.nearest_point;
+  r.normal = X_WS.linear() * r.normal;
+  return r;
+}
+
+namespace detail {
+
+template <typename S>
+PointDistanceResult<S> solveRadial(const Query<S>& q) {
+  // Paper Eq. 3: the surface point on the ray from the centre through Q.
+  const S g = q.shape.gauge(q.x);
+  return resultAt(q, q.shape.radialProjection(q.x), g < S(1), 0);
+}
+
+template PointDistanceResult<float> solveRadial(const Query<float>&);
+template PointDistanceResult<double> solveRadial(const Query<double>&);
+
+}  // namespace detail
+
+template PointDistanceResult<float> pointDistance(const Superellipsoid<float>&,
+                                                  const Vector3<float>&,
+                                                  const DistanceOptions<float>&);
+template PointDistanceResult<double> pointDistance(const Superellipsoid<double>&,
+                                                   const Vector3<double>&,
+                                                   const DistanceOptions<double>&);
+template PointDistanceResult<float> pointDistance(const Superellipsoid<float>&,
+                                                  const fcl::Transform3<float>&,
+                                                  const Vector3<float>&,
+                                                  const DistanceOptions<float>&);
+template PointDistanceResult<double> pointDistance(const Superellipsoid<double>&,
+                                                   const fcl::Transform3<double>&,
+                                                   const Vector3<double>&,
+                                                   const DistanceOptions<double>&);
+
+}  // namespace fcl_superellipsoid

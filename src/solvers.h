@@ -1,0 +1,47 @@
+#ifndef FCL_SUPERELLIPSOID_SRC_SOLVERS_H
+#define FCL_SUPERELLIPSOID_SRC_SOLVERS_H
+
+// Internal: the three point-distance methods behind pointDistance(). Each takes a validated
+// query in the shape's frame and an absolute tolerance (already scaled by the shape's size and
+// floored at the rounding level of the query).
+
+#include "fcl_superellipsoid/point_distance.h"
+
+namespace fcl_superellipsoid {
+namespace detail {
+
+template <typename S>
+struct Query {
+  const Superellipsoid<S>& shape;
+  Vector3<S> x;     // the query point, shape frame
+  S tolerance;      // absolute, length units
+  int max_iterations;
+};
+
+template <typename S>
+PointDistanceResult<S> solveRadial(const Query<S>& q);
+template <typename S>
+PointDistanceResult<S> solvePaper(const Query<S>& q);
+template <typename S>
+PointDistanceResult<S> solveExact(const Query<S>& q);
+
+/// Fills a result from a surface point N: d = ±‖Q − N‖ (the sign of the query's side),
+/// n = the unit normal at N, and the paper's error ‖N + d·n − Q‖ (Eq. 7).
+template <typename S>
+PointDistanceResult<S> resultAt(const Query<S>& q, const Vector3<S>& nearest, bool inside,
+                                int iterations) {
+  PointDistanceResult<S> r;
+  r.nearest_point = nearest;
+  r.normal = q.shape.normal(nearest);
+  const S len = (q.x - nearest).norm();
+  r.distance = inside ? -len : len;
+  r.error = (nearest + r.distance * r.normal - q.x).norm();
+  r.iterations = iterations;
+  r.converged = r.error <= q.tolerance;
+  return r;
+}
+
+}  // namespace detail
+}  // namespace fcl_superellipsoid
+
+#endif  // FCL_SUPERELLIPSOID_SRC_SOLVERS_H
