@@ -9,10 +9,9 @@
 // repetitions. Results print as the paper's Tables 1–4 and, with --csv, as one CSV row per
 // (side, shape, method).
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
-
-#include <CLI/CLI.hpp>
 
 #include "aspect_sweep.h"
 #include "paper_tables.h"
@@ -26,11 +25,14 @@ int main(int argc, char** argv) {
       "methods, with the paper's values beside ours."};
   PaperTablesConfig config;
   bool quick = false;
-  app.add_flag("--quick", quick, "Short run (2,000 points, 200 inside reference points, 3 repetitions)");
-  app.add_option("--points", config.points, "Surface points per shape (default 10,000, as the paper)")
+  app.add_flag("--quick", quick,
+               "Short run (2,000 points, 200 inside reference points, 3 repetitions)");
+  app.add_option("--points", config.points,
+                 "Surface points per shape (default 10,000, as the paper)")
       ->check(CLI::Range(1, 10000000));
-  app.add_option("--reference-points", config.reference_points,
-                 "Inside points per shape checked against the long-double reference (slow: ~5 ms each)")
+  app.add_option(
+         "--reference-points", config.reference_points,
+         "Inside points per shape checked against the long-double reference (slow: ~5 ms each)")
       ->check(CLI::Range(1, 10000000));
   app.add_option("--repetitions", config.repetitions, "Timing repetitions (median reported)")
       ->check(CLI::Range(1, 1000));

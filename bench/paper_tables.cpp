@@ -39,7 +39,10 @@ const std::vector<PaperShape>& paperShapes() {
   static const std::vector<PaperShape> shapes = {
       {0.3, 0.3, {0.41, 0.27, 100, 0, 2.63, 35.02}, {0.21, 0.11, 100, 0, 1.80, 32.36}},
       {0.65, 0.65, {0.59, 0.21, 100, 0, 1.76, 29.05}, {0.06, 0.02, 100, 0, 1.70, 23.65}},
-      {1.0, 1.0, {2.11e-14, 2.54e-14, 100, 0, 1.23, 32.57}, {2.10e-14, 2.46e-14, 100, 0, 1.13, 24.35}},
+      {1.0,
+       1.0,
+       {2.11e-14, 2.54e-14, 100, 0, 1.23, 32.57},
+       {2.10e-14, 2.46e-14, 100, 0, 1.13, 24.35}},
       {1.35, 1.35, {0.46, 0.19, 100, 0, 1.98, 30.37}, {0.06, 0.03, 100, 0, 1.63, 25.45}},
       {1.7, 1.7, {0.73, 0.55, 86, 2.50, 5.86, 33.66}, {0.19, 0.21, 96.08, 1.37, 2.52, 26.42}},
       {1.0, 0.3, {0.40, 0.28, 100, 0, 2.33, 26.51}, {0.15, 0.09, 100, 0, 2.27, 28.10}},
@@ -101,7 +104,8 @@ int runPaperTables(const PaperTablesConfig& config) {
                 outside ? "Tables 1 and 3, outside" : "Tables 2 and 4, inside", config.points,
                 offset);
     std::printf("%-12s %-11s %10s %9s %9s %7s %10s %9s | %-24s\n", "shape", "method", "avg err",
-                "sigma", "max err", "conv %", "err !conv", "us/query", "paper: avg err, conv %, us");
+                "sigma", "max err", "conv %", "err !conv", "us/query",
+                "paper: avg err, conv %, us");
     for (const PaperShape& ps : paperShapes()) {
       const Superellipsoid<double> shape(1, 1, 1, ps.e1, ps.e2);
       std::mt19937 rng(config.seed);
@@ -112,10 +116,12 @@ int runPaperTables(const PaperTablesConfig& config) {
         surface[i] = shape.surfacePoint(eta(rng), omega(rng));
         points[i] = surface[i] + offset * shape.normal(surface[i]);
       }
-      const int n_truth = outside ? config.points : std::min(config.points, config.reference_points);
+      const int n_truth =
+          outside ? config.points : std::min(config.points, config.reference_points);
       const std::vector<double> truth =
           outside ? std::vector<double>(config.points, offset)
-                  : referenceDistances(test::ReferenceDistance({1, 1, 1}, ps.e1, ps.e2), points, n_truth);
+                  : referenceDistances(test::ReferenceDistance({1, 1, 1}, ps.e1, ps.e2), points,
+                                       n_truth);
 
       // Timing: median over repetitions, methods in rotating order.
       std::vector<std::vector<double>> times(methods.size());
@@ -128,7 +134,8 @@ int runPaperTables(const PaperTablesConfig& config) {
           for (const auto& x : points) acc += pointDistance(shape, x, methods[m].options).distance;
           const auto stop = std::chrono::steady_clock::now();
           sink = sink + acc;
-          times[m].push_back(std::chrono::duration<double, std::micro>(stop - start).count() / points.size());
+          times[m].push_back(std::chrono::duration<double, std::micro>(stop - start).count() /
+                             points.size());
         }
       }
       const PaperValues& paper = outside ? ps.outside : ps.inside;
@@ -170,10 +177,11 @@ int runPaperTables(const PaperTablesConfig& config) {
         std::printf("\n");
         if (csv) {
           csv << (outside ? "outside" : "inside") << ',' << ps.e1 << ',' << ps.e2 << ','
-              << methods[m].name << ',' << s.avg_err_mm << ',' << s.sigma_mm << ',' << s.max_err_mm << ','
-              << s.converged_pct << ',' << s.nonconv_err_mm << ',' << s.avg_eq7_mm << ','
+              << methods[m].name << ',' << s.avg_err_mm << ',' << s.sigma_mm << ',' << s.max_err_mm
+              << ',' << s.converged_pct << ',' << s.nonconv_err_mm << ',' << s.avg_eq7_mm << ','
               << s.us_per_query << ',' << (m == 1 ? paper.avg_err : NAN) << ','
-              << (m == 1 ? paper.converged_pct : NAN) << ',' << (m == 1 ? paper.time_us : NAN) << '\n';
+              << (m == 1 ? paper.converged_pct : NAN) << ',' << (m == 1 ? paper.time_us : NAN)
+              << '\n';
         }
       }
     }

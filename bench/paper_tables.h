@@ -7,10 +7,10 @@ namespace fcl_superellipsoid {
 namespace bench {
 
 struct PaperTablesConfig {
-  int points = 10000;      // surface samples per shape (the paper: 10,000)
+  int points = 10000;           // surface samples per shape (the paper: 10,000)
   int reference_points = 1000;  // inside points checked against the long-double reference
-  int repetitions = 5;     // timing repetitions; the median is reported
-  std::string csv_path;    // where to write every row (empty: nowhere)
+  int repetitions = 5;          // timing repetitions; the median is reported
+  std::string csv_path;         // where to write every row (empty: nowhere)
   unsigned seed = 2026;
 };
 

@@ -31,10 +31,9 @@
 //
 // Convergence is judged by the paper's error (Eq. 7) so all methods share one yardstick.
 
+#include <Eigen/LU>
 #include <array>
 #include <cmath>
-
-#include <Eigen/LU>
 
 #include "nested_norm.h"
 #include "solvers.h"
@@ -136,8 +135,8 @@ class ExactSolver {
       const Candidate<S> c = candidateAt(tip);
       if (i == 0 || (c.point.squaredNorm() < best.point.squaredNorm())) best = c;
     }
-    for (const Vector3<S>& direction : {Vector3<S>(1, 1, 1), Vector3<S>(1, 1, 0),
-                                        Vector3<S>(1, 0, 1), Vector3<S>(0, 1, 1)}) {
+    for (const Vector3<S>& direction :
+         {Vector3<S>(1, 1, 1), Vector3<S>(1, 1, 0), Vector3<S>(1, 0, 1), Vector3<S>(0, 1, 1)}) {
       const Candidate<S> c = refine(candidateAt(Vector3<S>(direction / primal_.value(direction))));
       if (c.error <= q_.tolerance && c.point.squaredNorm() < best.point.squaredNorm()) best = c;
     }
@@ -243,8 +242,8 @@ class ExactSolver {
       const Vector3<S> residual = y_ - c.point - mu * e.gradient;
       Vector3<S> step;
       const Vector3<S> n = e.gradient.normalized();
-      const Eigen::Matrix<S, 3, 3> a = convexified(
-          Eigen::Matrix<S, 3, 3>::Identity() + mu * e.hessian, n, S(1));
+      const Eigen::Matrix<S, 3, 3> a =
+          convexified(Eigen::Matrix<S, 3, 3>::Identity() + mu * e.hessian, n, S(1));
       if (!solveBordered(a, e.gradient, residual, S(0), &step)) break;
       if (!tryStep(&c, step, [this](const Vector3<S>& p) { return p / primal_.value(p); })) break;
     }

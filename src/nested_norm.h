@@ -17,11 +17,10 @@
 // Each p-norm is evaluated after dividing by its largest argument, so every power is of a
 // ratio in [0, 1] and nothing overflows (ε → 0, far points, extreme radii).
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <limits>
-
-#include <Eigen/Core>
 
 #include "fcl_superellipsoid/superellipsoid.h"
 
@@ -47,8 +46,8 @@ inline S signedPow(S c, S e) {
 template <typename S>
 struct NestedNormEval {
   S value;
-  Vector3<S> gradient;                   // ∂N/∂w, 0-homogeneous, bounded
-  Eigen::Matrix<S, 3, 3> hessian;        // ∂²N/∂w², (−1)-homogeneous; only if requested
+  Vector3<S> gradient;             // ∂N/∂w, 0-homogeneous, bounded
+  Eigen::Matrix<S, 3, 3> hessian;  // ∂²N/∂w², (−1)-homogeneous; only if requested
 };
 
 template <typename S>

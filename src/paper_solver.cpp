@@ -29,11 +29,11 @@ Vector3<S> normalizedOr(const Vector3<S>& v, const Vector3<S>& fallback) {
 
 template <typename S>
 struct Guess {
-  Vector3<S> point;      // N, on the surface
-  Vector3<S> n_mu;       // contact normal
-  Vector3<S> n_se;       // surface normal at N
-  S distance;            // d, signed
-  S error;               // Eq. 7
+  Vector3<S> point;  // N, on the surface
+  Vector3<S> n_mu;   // contact normal
+  Vector3<S> n_se;   // surface normal at N
+  S distance;        // d, signed
+  S error;           // Eq. 7
 };
 
 template <typename S>
@@ -56,9 +56,9 @@ class PaperSolver {
   /// Eq. 10 then Eq. 8 then Eq. 9: adjust the distance to the new direction, step back from
   /// Q along it, and project the result radially onto the surface.
   Guess<S> step(const Guess<S>& from, const Vector3<S>& direction) const {
-    const S adjusted = from.distance * from.n_mu.dot(direction);       // Eq. 10
-    const Vector3<S> point = q_.x - adjusted * direction;                // Eq. 8
-    return guessAt(q_.shape.radialProjection(point));                    // Eq. 9
+    const S adjusted = from.distance * from.n_mu.dot(direction);  // Eq. 10
+    const Vector3<S> point = q_.x - adjusted * direction;         // Eq. 8
+    return guessAt(q_.shape.radialProjection(point));             // Eq. 9
   }
 
   PointDistanceResult<S> solve() {
@@ -88,7 +88,7 @@ class PaperSolver {
       const bool standard = !last_divergent;
       if (standard) {  // Eq. 5
         direction = normalizedOr<S>((1 - lambda) * best.n_mu + lambda * best.n_se, best.n_se);
-      } else {         // Eq. 6, 7 (the averaged normals) and 14
+      } else {  // Eq. 6, 7 (the averaged normals) and 14
         const Vector3<S> n_mu_avg = normalizedOr<S>(best.n_mu + last.n_mu, best.n_mu);
         const Vector3<S> n_se_avg = normalizedOr<S>(best.n_se + last.n_se, best.n_se);
         direction = normalizedOr<S>((1 - lambda) * n_mu_avg + lambda * n_se_avg, best.n_se);

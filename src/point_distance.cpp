@@ -35,9 +35,12 @@ void validate(const Vector3<S>& p, const DistanceOptions<S>& options) {
 
 const char* toString(DistanceMethod method) {
   switch (method) {
-    case DistanceMethod::kRadial: return "Radial";
-    case DistanceMethod::kPaper: return "Paper";
-    case DistanceMethod::kExact: return "Exact";
+    case DistanceMethod::kRadial:
+      return "Radial";
+    case DistanceMethod::kPaper:
+      return "Paper";
+    case DistanceMethod::kExact:
+      return "Exact";
   }
   return "unknown";
 }
@@ -55,9 +58,12 @@ PointDistanceResult<S> pointDistance(const Superellipsoid<S>& shape,
   // Exact solver's centre search (documented in point_distance.h).
   if (p_SQ.isZero(S(0))) return detail::solveExact(q);
   switch (options.method) {
-    case DistanceMethod::kRadial: return detail::solveRadial(q);
-    case DistanceMethod::kPaper: return detail::solvePaper(q);
-    case DistanceMethod::kExact: return detail::solveExact(q);
+    case DistanceMethod::kRadial:
+      return detail::solveRadial(q);
+    case DistanceMethod::kPaper:
+      return detail::solvePaper(q);
+    case DistanceMethod::kExact:
+      return detail::solveExact(q);
   }
   throwInvalid("options.method is not a DistanceMethod", static_cast<int>(options.method));
 }

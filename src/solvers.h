@@ -13,8 +13,8 @@ namespace detail {
 template <typename S>
 struct Query {
   const Superellipsoid<S>& shape;
-  Vector3<S> x;     // the query point, shape frame
-  S tolerance;      // absolute, length units
+  Vector3<S> x;  // the query point, shape frame
+  S tolerance;   // absolute, length units
   int max_iterations;
 };
 

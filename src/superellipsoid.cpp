@@ -162,8 +162,7 @@ std::vector<Vector3<S>> Superellipsoid<S>::getBoundVertices(const fcl::Transform
 template <typename S>
 std::ostream& operator<<(std::ostream& out, const Superellipsoid<S>& shape) {
   return out << "Superellipsoid(a=(" << shape.radii()[0] << ", " << shape.radii()[1] << ", "
-             << shape.radii()[2] << "), eps1=" << shape.eps1() << ", eps2=" << shape.eps2()
-             << ")";
+             << shape.radii()[2] << "), eps1=" << shape.eps1() << ", eps2=" << shape.eps2() << ")";
 }
 
 template class Superellipsoid<float>;

@@ -21,9 +21,8 @@ std::vector<int> ringSizes(int ring_vertices) {
   std::vector<int> order(rings);
   std::iota(order.begin(), order.end(), 0);
   const double middle = (rings - 1) / 2.0;
-  std::stable_sort(order.begin(), order.end(), [middle](int a, int b) {
-    return std::abs(a - middle) < std::abs(b - middle);
-  });
+  std::stable_sort(order.begin(), order.end(),
+                   [middle](int a, int b) { return std::abs(a - middle) < std::abs(b - middle); });
   for (int i = 0; i < ring_vertices % rings; ++i) ++sizes[order[i]];
   return sizes;
 }
@@ -43,8 +42,8 @@ TriangleMesh<S> tessellate(const Superellipsoid<S>& shape, int num_vertices) {
   TriangleMesh<S> mesh;
   mesh.vertices.reserve(num_vertices);
   mesh.vertices.emplace_back(S(0), S(0), shape.radii()[2]);  // north pole, index 0
-  std::vector<int> first(rings);                            // index of each ring's vertex 0
-  std::vector<double> offset(rings);                        // longitude offset, in steps
+  std::vector<int> first(rings);                             // index of each ring's vertex 0
+  std::vector<double> offset(rings);                         // longitude offset, in steps
   for (int j = 0; j < rings; ++j) offset[j] = (j % 2) ? 0.5 : 0.0;
   auto longitude = [&](int j, int k) { return -pi + 2 * pi * (k + offset[j]) / sizes[j]; };
   for (int j = 0; j < rings; ++j) {
@@ -81,8 +80,7 @@ TriangleMesh<S> tessellate(const Superellipsoid<S>& shape, int num_vertices) {
         mesh.triangles.emplace_back(ringIndex(j, i), ringIndex(j + 1, k), ringIndex(j, i + 1));
         ++i;
       } else {
-        mesh.triangles.emplace_back(ringIndex(j, i), ringIndex(j + 1, k),
-                                    ringIndex(j + 1, k + 1));
+        mesh.triangles.emplace_back(ringIndex(j, i), ringIndex(j + 1, k), ringIndex(j + 1, k + 1));
         ++k;
       }
     }

@@ -22,8 +22,8 @@ namespace fcl_superellipsoid {
 namespace test {
 
 struct ReferenceResult {
-  long double distance;                  // signed
-  std::array<long double, 3> nearest;    // in the query's octant
+  long double distance;                // signed
+  std::array<long double, 3> nearest;  // in the query's octant
 };
 
 class ReferenceDistance {
@@ -50,9 +50,9 @@ class ReferenceDistance {
     // The parametric pass is only needed where the radial grid is coarse: razor edges.
     const Sample parametric = std::min(e1_, e2_) < 0.1L ? search(y, true) : Sample{INFINITY, 0, 0};
     parametric_ = false;
-    const std::array<long double, 3> p =
-        parametric.d2 < best.d2 ? parametricPoint(parametric.alpha, parametric.beta)
-                                : point(best.alpha, best.beta);
+    const std::array<long double, 3> p = parametric.d2 < best.d2
+                                             ? parametricPoint(parametric.alpha, parametric.beta)
+                                             : point(best.alpha, best.beta);
     if (parametric.d2 < best.d2) best = parametric;
     ReferenceResult r;
     const bool inside = gauge(y) < 1;
@@ -121,7 +121,8 @@ class ReferenceDistance {
     return {d[0] / g, d[1] / g, d[2] / g};
   }
 
-  long double dist2(const std::array<long double, 3>& y, long double alpha, long double beta) const {
+  long double dist2(const std::array<long double, 3>& y, long double alpha,
+                    long double beta) const {
     const auto p = parametric_ ? parametricPoint(alpha, beta) : point(alpha, beta);
     return (p[0] - y[0]) * (p[0] - y[0]) + (p[1] - y[1]) * (p[1] - y[1]) +
            (p[2] - y[2]) * (p[2] - y[2]);

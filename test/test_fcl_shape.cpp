@@ -1,14 +1,14 @@
 // The shape inside FCL: collision objects, bounding volumes and a broadphase manager.
 
-#include <memory>
-#include <set>
-
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/geometry/shape/utility.h>
 #include <fcl/math/bv/OBB.h>
 #include <fcl/math/bv/OBBRSS.h>
 #include <fcl/narrowphase/collision_object.h>
+
+#include <memory>
+#include <set>
 
 #include "fcl_superellipsoid/superellipsoid.h"
 #include "test_helpers.h"
@@ -23,7 +23,8 @@ fcl::Transform3<S> randomPose(std::mt19937& rng, double spread) {
       Eigen::Quaternion<double>(unit(rng), unit(rng), unit(rng), unit(rng)).normalized();
   fcl::Transform3<S> tf = fcl::Transform3<S>::Identity();
   tf.linear() = q.toRotationMatrix().cast<S>();
-  tf.translation() = Vector3<S>(S(unit(rng) * spread), S(unit(rng) * spread), S(unit(rng) * spread));
+  tf.translation() =
+      Vector3<S>(S(unit(rng) * spread), S(unit(rng) * spread), S(unit(rng) * spread));
   return tf;
 }
 
@@ -92,9 +93,10 @@ TYPED_TEST(FclShapeTest, BroadphaseFindsTheObjectWhereItShould) {
   std::vector<std::shared_ptr<Superellipsoid<S>>> shapes;
   fcl::DynamicAABBTreeCollisionManager<S> manager;
   for (int i = 0; i < 12; ++i) {
-    shapes.push_back(std::make_shared<Superellipsoid<S>>(S(1 + 0.1 * i), S(0.5), S(0.8), S(0.1 + 0.15 * i),
-                                                         S(1.9 - 0.15 * i)));
-    objects.push_back(std::make_unique<fcl::CollisionObject<S>>(shapes.back(), randomPose<S>(rng, 30)));
+    shapes.push_back(std::make_shared<Superellipsoid<S>>(S(1 + 0.1 * i), S(0.5), S(0.8),
+                                                         S(0.1 + 0.15 * i), S(1.9 - 0.15 * i)));
+    objects.push_back(
+        std::make_unique<fcl::CollisionObject<S>>(shapes.back(), randomPose<S>(rng, 30)));
     objects.back()->setUserData(objects.back().get());
     manager.registerObject(objects.back().get());
   }

@@ -4,14 +4,15 @@
 // Shared test support: scalar-dependent tolerances, seeded sampling, and an independent
 // long-double reference of the gauge (written from MATH.md, not from src/).
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <random>
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
-
 #include "fcl_superellipsoid/superellipsoid.h"
+#include "reference_distance.h"
 
 namespace fcl_superellipsoid {
 namespace test {
@@ -26,12 +27,14 @@ S evalTolerance() {
 }
 
 /// The exponent grid of the hard cases, from 0.02 to 1.98.
-inline std::vector<double> exponentGrid() { return {0.02, 0.1, 0.3, 0.65, 1.0, 1.35, 1.7, 1.9, 1.98}; }
+inline std::vector<double> exponentGrid() {
+  return {0.02, 0.1, 0.3, 0.65, 1.0, 1.35, 1.7, 1.9, 1.98};
+}
 
 /// Radii with aspect ratios up to 1000:1 (and the extreme scales 1e-4, 1e4).
 inline std::vector<std::array<double, 3>> radiiSet() {
-  return {{1, 1, 1}, {3.5, 3.0, 2.0}, {1000, 1, 1}, {1, 1000, 1}, {1, 1, 1e-3}, {1e-4, 2e-4, 1.5e-4},
-          {1e4, 0.5e4, 2e4}};
+  return {{1, 1, 1},    {3.5, 3.0, 2.0},      {1000, 1, 1},     {1, 1000, 1},
+          {1, 1, 1e-3}, {1e-4, 2e-4, 1.5e-4}, {1e4, 0.5e4, 2e4}};
 }
 
 /// True for a cigar-like shape: one radius more than 5× the middle one. (A flat, disk-like
@@ -42,21 +45,10 @@ inline bool isElongated(const std::array<double, 3>& a) {
   return s[2] > 5 * s[1];
 }
 
-/// Independent reference of G = F^(ε2/2) in long double, straight from the formula
-/// F = (|x/a1|^(2/ε1) + |y/a2|^(2/ε1))^(ε1/ε2) + |z/a3|^(2/ε2), with the coordinates first
-/// divided by the largest |x_i/a_i| (G is 1-homogeneous) so that nothing overflows.
-inline long double referenceGauge(const std::array<long double, 3>& a, long double e1, long double e2,
-                                  const std::array<long double, 3>& x) {
-  long double u[3], m = 0;
-  for (int i = 0; i < 3; ++i) {
-    u[i] = std::fabs(x[i] / a[i]);
-    m = std::max(m, u[i]);
-  }
-  if (m == 0) return 0;
-  for (long double& ui : u) ui /= m;
-  const long double xy = std::pow(u[0], 2 / e1) + std::pow(u[1], 2 / e1);
-  const long double f = std::pow(xy, e1 / e2) + std::pow(u[2], 2 / e2);
-  return m * std::pow(f, e2 / 2);
+/// Independent reference of G = F^(ε2/2) in long double (reference_distance.h).
+inline long double referenceGauge(const std::array<long double, 3>& a, long double e1,
+                                  long double e2, const std::array<long double, 3>& x) {
+  return ReferenceDistance(a, e1, e2).gauge(x);
 }
 
 template <typename S>

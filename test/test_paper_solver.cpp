@@ -2,7 +2,6 @@
 // approximation, so accuracy is asserted only where the paper claims it).
 
 #include "fcl_superellipsoid/point_distance.h"
-
 #include "test_helpers.h"
 
 namespace fcl_superellipsoid {
@@ -22,9 +21,9 @@ TYPED_TEST(PaperSolverTest, HardCasesKeepTheInvariants) {
         const Superellipsoid<S> shape{S(a[0]), S(a[1]), S(a[2]), S(e1), S(e2)};
         SCOPED_TRACE(test::describe(shape));
         const double size = shape.size();
-        std::vector<Vector3<S>> points = {Vector3<S>::Zero(), Vector3<S>(S(1e-12 * a[0]), 0, 0),
-                                          Vector3<S>(0, S(2 * a[1]), 0), Vector3<S>(0, 0, S(-0.5 * a[2])),
-                                          Vector3<S>(S(0.3 * a[0]), S(0.2 * a[1]), 0)};
+        std::vector<Vector3<S>> points = {
+            Vector3<S>::Zero(), Vector3<S>(S(1e-12 * a[0]), 0, 0), Vector3<S>(0, S(2 * a[1]), 0),
+            Vector3<S>(0, 0, S(-0.5 * a[2])), Vector3<S>(S(0.3 * a[0]), S(0.2 * a[1]), 0)};
         for (int k = 0; k < 4; ++k) {
           const auto [eta, omega] = angles();
           const Vector3<S> p = shape.surfacePoint(S(eta), S(omega));
@@ -34,16 +33,18 @@ TYPED_TEST(PaperSolverTest, HardCasesKeepTheInvariants) {
         }
         for (const Vector3<S>& x : points) {
           const auto r = pointDistance(shape, x, options);
-          ASSERT_TRUE(std::isfinite(r.distance) && r.nearest_point.allFinite() && r.normal.allFinite() &&
-                      std::isfinite(r.error))
+          ASSERT_TRUE(std::isfinite(r.distance) && r.nearest_point.allFinite() &&
+                      r.normal.allFinite() && std::isfinite(r.error))
               << x.transpose();
           EXPECT_LE(r.iterations, options.max_iterations);
-          EXPECT_NEAR(double(test::referenceGauge(shape, r.nearest_point)), 1.0, 4 * test::evalTolerance<S>());
+          EXPECT_NEAR(double(test::referenceGauge(shape, r.nearest_point)), 1.0,
+                      4 * test::evalTolerance<S>());
           EXPECT_NEAR(double((x - r.nearest_point).norm()), double(std::abs(r.distance)),
                       4 * test::evalTolerance<S>() * double(x.norm() + size));
           EXPECT_NEAR(double(r.normal.norm()), 1.0, 4 * test::evalTolerance<S>());
-          EXPECT_EQ(r.converged, r.error <= options.tolerance * size +
-                                                8 * std::numeric_limits<S>::epsilon() * (x.norm() + size));
+          EXPECT_EQ(r.converged,
+                    r.error <= options.tolerance * size +
+                                   8 * std::numeric_limits<S>::epsilon() * (x.norm() + size));
           const double g = double(test::referenceGauge(shape, x));
           if (std::abs(g - 1) > 1e-3) EXPECT_EQ(r.distance < 0, g < 1);
         }

@@ -2,10 +2,9 @@
 // from the independent long-double reference (reference_distance.h). The Paper method has its
 // own file (test_paper_solver.cpp).
 
-#include "fcl_superellipsoid/point_distance.h"
-
 #include <limits>
 
+#include "fcl_superellipsoid/point_distance.h"
 #include "reference_distance.h"
 #include "test_helpers.h"
 
@@ -39,13 +38,16 @@ void expectInvariants(const Superellipsoid<S>& shape, const Vector3<S>& x,
   ASSERT_TRUE(r.normal.allFinite());
   ASSERT_TRUE(std::isfinite(r.error));
   EXPECT_LE(r.iterations, max_iterations);
-  EXPECT_NEAR(double(test::referenceGauge(shape, r.nearest_point)), 1.0, 4 * test::evalTolerance<S>());
+  EXPECT_NEAR(double(test::referenceGauge(shape, r.nearest_point)), 1.0,
+              4 * test::evalTolerance<S>());
   EXPECT_NEAR(double(r.normal.norm()), 1.0, 4 * test::evalTolerance<S>());
-  EXPECT_NEAR(double((r.normal - shape.normal(r.nearest_point)).norm()), 0.0, 1e3 * test::evalTolerance<S>());
+  EXPECT_NEAR(double((r.normal - shape.normal(r.nearest_point)).norm()), 0.0,
+              1e3 * test::evalTolerance<S>());
   EXPECT_NEAR(double((x - r.nearest_point).norm()), double(std::abs(r.distance)),
               tol * (size + x.norm()));
   const long double g = test::referenceGauge(shape, x);
-  if (std::abs(double(g) - 1) > 1e-3) EXPECT_EQ(r.distance < 0, g < 1) << "sign disagrees with the inside test";
+  if (std::abs(double(g) - 1) > 1e-3)
+    EXPECT_EQ(r.distance < 0, g < 1) << "sign disagrees with the inside test";
   EXPECT_NEAR(double((r.nearest_point + r.distance * r.normal - x).norm()), double(r.error),
               tol * (size + x.norm()));
 }
@@ -77,8 +79,9 @@ void checkOutsideByConstruction(const std::vector<std::array<double, 3>>& radii)
           // In float, building Q itself rounds by ulps of |Q|.
           const double slack = target * (size + x.norm());
           EXPECT_NEAR(double(r.distance), double((x - p).norm()), slack);
-          EXPECT_NEAR(double((r.nearest_point - p).norm()), 0.0,
-                      std::max(slack, 10 * double(std::numeric_limits<S>::epsilon()) * x.norm()) * 1e3);
+          EXPECT_NEAR(
+              double((r.nearest_point - p).norm()), 0.0,
+              std::max(slack, 10 * double(std::numeric_limits<S>::epsilon()) * x.norm()) * 1e3);
         }
       }
     }
@@ -108,10 +111,10 @@ TYPED_TEST(PointDistanceTest, ExactMatchesReferenceInside) {
   test::AngleSampler angles(12);
   const auto options = DistanceOptions<S>::of(DistanceMethod::kExact);
   const std::vector<std::array<double, 5>> shapes = {
-      {1, 1, 1, 0.3, 0.3}, {1, 1, 1, 1.7, 1.7}, {1, 1, 1, 1, 0.3},  {1, 1, 1, 1, 1.6},
-      {1, 1.5, 0.7, 0.1, 0.1}, {1, 1.5, 0.7, 1.9, 1.9}, {1, 1.5, 0.7, 0.1, 1.9},
-      {1, 1.5, 0.7, 1.9, 0.1}, {3.5, 3.0, 2.0, 0.4, 0.3}, {100, 1, 1, 0.65, 1.35},
-      {1, 1, 1, 0.02, 0.02}, {1, 1, 1, 1.98, 1.98}};
+      {1, 1, 1, 0.3, 0.3},     {1, 1, 1, 1.7, 1.7},     {1, 1, 1, 1, 0.3},
+      {1, 1, 1, 1, 1.6},       {1, 1.5, 0.7, 0.1, 0.1}, {1, 1.5, 0.7, 1.9, 1.9},
+      {1, 1.5, 0.7, 0.1, 1.9}, {1, 1.5, 0.7, 1.9, 0.1}, {3.5, 3.0, 2.0, 0.4, 0.3},
+      {100, 1, 1, 0.65, 1.35}, {1, 1, 1, 0.02, 0.02},   {1, 1, 1, 1.98, 1.98}};
   for (const auto& c : shapes) {
     const Superellipsoid<S> shape = makeShape<S>({c[0], c[1], c[2]}, c[3], c[4]);
     SCOPED_TRACE(test::describe(shape));
@@ -121,7 +124,8 @@ TYPED_TEST(PointDistanceTest, ExactMatchesReferenceInside) {
       const auto [eta, omega] = angles();
       const Vector3<S> p = shape.surfacePoint(S(eta), S(omega));
       // Depths from just below the surface to deep inside (the medial region).
-      const double depth = std::vector<double>{1e-9, 0.015, 0.1, 0.4}[k % 4] * shape.radii().minCoeff();
+      const double depth =
+          std::vector<double>{1e-9, 0.015, 0.1, 0.4}[k % 4] * shape.radii().minCoeff();
       const Vector3<S> x = p - S(depth) * shape.normal(p);
       const auto r = pointDistance(shape, x, options);
       SCOPED_TRACE("depth " + std::to_string(depth));
@@ -163,21 +167,22 @@ TYPED_TEST(PointDistanceTest, SpecialPointsStayFiniteAndExact) {
           }
         }
         // The centre and points near it, on axes and on coordinate planes: the reference.
-        std::vector<Vector3<S>> points = {Vector3<S>::Zero(),
-                                          Vector3<S>(S(1e-12 * a[0]), S(0), S(0)),
-                                          Vector3<S>(S(-1e-12 * a[0]), S(1e-12 * a[1]), S(1e-12 * a[2])),
-                                          Vector3<S>(S(0.5 * a[0]), S(0), S(0)),
-                                          Vector3<S>(S(0), S(0), S(-0.3 * a[2])),
-                                          Vector3<S>(S(0.3 * a[0]), S(-0.2 * a[1]), S(0)),
-                                          Vector3<S>(S(0), S(0.5 * a[1]), S(0.2 * a[2]))};
+        std::vector<Vector3<S>> points = {
+            Vector3<S>::Zero(),
+            Vector3<S>(S(1e-12 * a[0]), S(0), S(0)),
+            Vector3<S>(S(-1e-12 * a[0]), S(1e-12 * a[1]), S(1e-12 * a[2])),
+            Vector3<S>(S(0.5 * a[0]), S(0), S(0)),
+            Vector3<S>(S(0), S(0), S(-0.3 * a[2])),
+            Vector3<S>(S(0.3 * a[0]), S(-0.2 * a[1]), S(0)),
+            Vector3<S>(S(0), S(0.5 * a[1]), S(0.2 * a[2]))};
         for (const Vector3<S>& x : points) {
           const auto r = pointDistance(shape, x, options);
           SCOPED_TRACE("at " + std::to_string(x[0]) + ", " + std::to_string(x[1]) + ", " +
                        std::to_string(x[2]));
           expectInvariants(shape, x, r, options.max_iterations, target);
           // The (slow) reference on the unit-radii shapes, double only, ε ∈ [0.1, 1.9].
-          if (std::is_same<S, double>::value && std::min(e1, e2) >= 0.1 && std::max(e1, e2) <= 1.9 &&
-              a[0] == 1) {
+          if (std::is_same<S, double>::value && std::min(e1, e2) >= 0.1 &&
+              std::max(e1, e2) <= 1.9 && a[0] == 1) {
             const auto truth = reference.query({x[0], x[1], x[2]});
             EXPECT_NEAR(double(r.distance), double(truth.distance), target * size);
           }
@@ -190,7 +195,8 @@ TYPED_TEST(PointDistanceTest, SpecialPointsStayFiniteAndExact) {
           const Vector3<S> x = p + S(t * size) * shape.normal(p);
           const auto r = pointDistance(shape, x, options);
           expectInvariants(shape, x, r, options.max_iterations, target);
-          EXPECT_NEAR(double(r.distance), t * size, target * size + 4 * std::numeric_limits<S>::epsilon() * size);
+          EXPECT_NEAR(double(r.distance), t * size,
+                      target * size + 4 * std::numeric_limits<S>::epsilon() * size);
         }
       }
     }
@@ -219,14 +225,17 @@ TYPED_TEST(PointDistanceTest, WorldFrameOverloadPosesTheAnswer) {
   using S = TypeParam;
   const Superellipsoid<S> shape{S(1), S(2), S(0.5), S(0.6), S(1.2)};
   fcl::Transform3<S> X_WS = fcl::Transform3<S>::Identity();
-  X_WS.linear() = Eigen::AngleAxis<S>(S(0.7), Vector3<S>(S(1), S(2), S(3)).normalized()).toRotationMatrix();
+  X_WS.linear() =
+      Eigen::AngleAxis<S>(S(0.7), Vector3<S>(S(1), S(2), S(3)).normalized()).toRotationMatrix();
   X_WS.translation() = Vector3<S>(S(5), S(-3), S(2));
   const Vector3<S> p_SQ(S(0.3), S(2.5), S(-0.4));
   const auto local = pointDistance(shape, p_SQ);
   const auto world = pointDistance(shape, X_WS, Vector3<S>(X_WS * p_SQ));
   EXPECT_NEAR(world.distance, local.distance, 4 * test::evalTolerance<S>() * 10);
-  EXPECT_TRUE(world.nearest_point.isApprox(X_WS * local.nearest_point, S(1e3) * test::evalTolerance<S>()));
-  EXPECT_TRUE(world.normal.isApprox(X_WS.linear() * local.normal, S(1e3) * test::evalTolerance<S>()));
+  EXPECT_TRUE(
+      world.nearest_point.isApprox(X_WS * local.nearest_point, S(1e3) * test::evalTolerance<S>()));
+  EXPECT_TRUE(
+      world.normal.isApprox(X_WS.linear() * local.normal, S(1e3) * test::evalTolerance<S>()));
 }
 
 TYPED_TEST(PointDistanceTest, RadialIsExactOnlyAlongNormalRays) {
@@ -248,10 +257,12 @@ TYPED_TEST(PointDistanceTest, RadialIsExactOnlyAlongNormalRays) {
           const Vector3<S> x = p + t * shape.normal(p);
           const auto rr = pointDistance(shape, x, options);
           ASSERT_TRUE(std::isfinite(rr.distance));
-          EXPECT_NEAR(double(test::referenceGauge(shape, rr.nearest_point)), 1.0, 4 * test::evalTolerance<S>());
+          EXPECT_NEAR(double(test::referenceGauge(shape, rr.nearest_point)), 1.0,
+                      4 * test::evalTolerance<S>());
           EXPECT_NEAR(double((x - rr.nearest_point).norm()), double(std::abs(rr.distance)),
                       4 * test::evalTolerance<S>() * double(x.norm() + 1));
-          EXPECT_NEAR(double(rr.nearest_point.normalized().dot(x.normalized())), 1.0, 1e3 * test::evalTolerance<S>());
+          EXPECT_NEAR(double(rr.nearest_point.normalized().dot(x.normalized())), 1.0,
+                      1e3 * test::evalTolerance<S>());
         }
       }
     }

@@ -1,12 +1,11 @@
 // The shape's own mathematics: surface, gauge, gradient, volume, inertia, validation.
 
-#include "fcl_superellipsoid/superellipsoid.h"
+#include <fcl/geometry/shape/ellipsoid.h>
 
 #include <sstream>
 #include <stdexcept>
 
-#include <fcl/geometry/shape/ellipsoid.h>
-
+#include "fcl_superellipsoid/superellipsoid.h"
 #include "test_helpers.h"
 
 namespace fcl_superellipsoid {
@@ -92,7 +91,8 @@ TYPED_TEST(SuperellipsoidTest, NormalAgreesWithAFiniteDifferenceGradient) {
             std::array<long double, 3> xp{p[0], p[1], p[2]}, xm{p[0], p[1], p[2]};
             xp[i] += h;
             xm[i] -= h;
-            fd[i] = (test::referenceGauge(ra, e1, e2, xp) - test::referenceGauge(ra, e1, e2, xm)) / (2 * h);
+            fd[i] = (test::referenceGauge(ra, e1, e2, xp) - test::referenceGauge(ra, e1, e2, xm)) /
+                    (2 * h);
           }
           const long double fd_norm = std::sqrt(fd[0] * fd[0] + fd[1] * fd[1] + fd[2] * fd[2]);
           const Vector3<S> n = shape.normal(p);
@@ -101,7 +101,8 @@ TYPED_TEST(SuperellipsoidTest, NormalAgreesWithAFiniteDifferenceGradient) {
           for (int i = 0; i < 3; ++i) {
             // Finite differences are only as good as the gradient is smooth over the step;
             // for ε near 2 the gradient has a cusp on the coordinate planes.
-            EXPECT_NEAR(double(n[i]), double(fd[i] / fd_norm), (std::is_same<S, float>::value ? 1e-4 : 1e-6))
+            EXPECT_NEAR(double(n[i]), double(fd[i] / fd_norm),
+                        (std::is_same<S, float>::value ? 1e-4 : 1e-6))
                 << "component " << i << " at " << p.transpose();
             EXPECT_NEAR(double(grad[i]), double(fd[i]),
                         (std::is_same<S, float>::value ? 1e-4 : 1e-6) * double(fd_norm))
@@ -177,8 +178,11 @@ TYPED_TEST(SuperellipsoidTest, VolumeAndInertiaMatchTheEllipsoidExactly) {
 // membership test; the tolerance is 5 standard errors of the estimate.
 TYPED_TEST(SuperellipsoidTest, VolumeAndInertiaMatchMonteCarloIntegration) {
   using S = TypeParam;
-  const std::vector<std::array<double, 5>> shapes = {
-      {1, 1, 1, 0.3, 0.3}, {1, 2, 0.5, 1.0, 0.3}, {1, 1, 1, 1.7, 1.7}, {2, 1, 1.5, 0.1, 1.9}, {0.7, 1.3, 1, 1.9, 0.1}};
+  const std::vector<std::array<double, 5>> shapes = {{1, 1, 1, 0.3, 0.3},
+                                                     {1, 2, 0.5, 1.0, 0.3},
+                                                     {1, 1, 1, 1.7, 1.7},
+                                                     {2, 1, 1.5, 0.1, 1.9},
+                                                     {0.7, 1.3, 1, 1.9, 0.1}};
   std::mt19937_64 rng(4);
   std::uniform_real_distribution<double> unit(-1, 1);
   for (const auto& c : shapes) {
@@ -220,12 +224,16 @@ TYPED_TEST(SuperellipsoidTest, InvalidParametersThrowNamingTheValue) {
     std::array<S, 5> p;
     std::string name, value;
   };
-  const std::vector<Case> cases = {
-      {{S(-1), 1, 1, 1, 1}, "radius a1", "-1"},   {{1, S(0), 1, 1, 1}, "radius a2", "0"},
-      {{1, 1, nan, 1, 1}, "radius a3", "nan"},    {{inf, 1, 1, 1, 1}, "radius a1", "inf"},
-      {{1, 1, 1, S(0), 1}, "exponent eps1", "0"}, {{1, 1, 1, S(2), 1}, "exponent eps1", "2"},
-      {{1, 1, 1, 1, S(2.5)}, "exponent eps2", "2.5"}, {{1, 1, 1, 1, S(-0.1)}, "exponent eps2", "-0.1"},
-      {{1, 1, 1, nan, 1}, "exponent eps1", "nan"}, {{1, 1, 1, 1, inf}, "exponent eps2", "inf"}};
+  const std::vector<Case> cases = {{{S(-1), 1, 1, 1, 1}, "radius a1", "-1"},
+                                   {{1, S(0), 1, 1, 1}, "radius a2", "0"},
+                                   {{1, 1, nan, 1, 1}, "radius a3", "nan"},
+                                   {{inf, 1, 1, 1, 1}, "radius a1", "inf"},
+                                   {{1, 1, 1, S(0), 1}, "exponent eps1", "0"},
+                                   {{1, 1, 1, S(2), 1}, "exponent eps1", "2"},
+                                   {{1, 1, 1, 1, S(2.5)}, "exponent eps2", "2.5"},
+                                   {{1, 1, 1, 1, S(-0.1)}, "exponent eps2", "-0.1"},
+                                   {{1, 1, 1, nan, 1}, "exponent eps1", "nan"},
+                                   {{1, 1, 1, 1, inf}, "exponent eps2", "inf"}};
   for (const Case& c : cases) {
     try {
       Superellipsoid<S> shape(c.p[0], c.p[1], c.p[2], c.p[3], c.p[4]);

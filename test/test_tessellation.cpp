@@ -1,13 +1,12 @@
 // Tessellation: exact vertex counts, vertices on the surface, closed outward meshes, OBJ and
 // FCL BVH export.
 
-#include "fcl_superellipsoid/tessellation.h"
+#include <fcl/math/bv/OBBRSS.h>
 
 #include <map>
 #include <sstream>
 
-#include <fcl/math/bv/OBBRSS.h>
-
+#include "fcl_superellipsoid/tessellation.h"
 #include "test_helpers.h"
 
 namespace fcl_superellipsoid {
@@ -68,7 +67,8 @@ TYPED_TEST(TessellationTest, FineMeshesConvergeToTheVolume) {
   double volume = 0;
   for (const auto& t : mesh.triangles) {
     volume += mesh.vertices[t[0]].template cast<double>().dot(
-                  mesh.vertices[t[1]].template cast<double>().cross(mesh.vertices[t[2]].template cast<double>())) /
+                  mesh.vertices[t[1]].template cast<double>().cross(
+                      mesh.vertices[t[2]].template cast<double>())) /
               6;
   }
   EXPECT_NEAR(volume / shape.computeVolume(), 1.0, 2e-3);
@@ -116,7 +116,8 @@ TYPED_TEST(TessellationTest, ObjExportRoundTrips) {
   }
   ASSERT_EQ(vertices.size(), mesh.vertices.size());
   ASSERT_EQ(faces.size(), mesh.triangles.size());
-  for (size_t i = 0; i < vertices.size(); ++i) EXPECT_EQ(vertices[i], mesh.vertices[i]);  // max_digits10
+  for (size_t i = 0; i < vertices.size(); ++i)
+    EXPECT_EQ(vertices[i], mesh.vertices[i]);  // max_digits10
   for (size_t i = 0; i < faces.size(); ++i) {
     for (int k = 0; k < 3; ++k) EXPECT_EQ(faces[i][k], int(mesh.triangles[i][k]) + 1);  // 1-based
   }

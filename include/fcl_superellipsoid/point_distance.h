@@ -21,10 +21,10 @@
 /// the order +x, +y, +z tip, then (1,1,1), (1,1,0), (1,0,1), (0,1,1). A sphere's centre
 /// returns (a, 0, 0), distance −a; an octahedron-like shape (ε > 1) returns a face point.
 
+#include <fcl/math/geometry.h>
+
 #include <stdexcept>
 #include <string>
-
-#include <fcl/math/geometry.h>
 
 #include "fcl_superellipsoid/export.h"
 #include "fcl_superellipsoid/superellipsoid.h"
@@ -83,12 +83,12 @@ struct DistanceOptions {
 
 template <typename S>
 struct PointDistanceResult {
-  S distance{};               ///< signed: > 0 outside, < 0 inside
-  Vector3<S> nearest_point;   ///< on the surface, in the query's frame
-  Vector3<S> normal;          ///< unit outward surface normal at nearest_point
-  int iterations = 0;         ///< iterations used (0 for Radial)
-  bool converged = false;     ///< error ≤ tolerance × size (or the rounding floor, see below)
-  S error{};                  ///< final error estimate, ‖N + d·n(N) − Q‖, length units
+  S distance{};              ///< signed: > 0 outside, < 0 inside
+  Vector3<S> nearest_point;  ///< on the surface, in the query's frame
+  Vector3<S> normal;         ///< unit outward surface normal at nearest_point
+  int iterations = 0;        ///< iterations used (0 for Radial)
+  bool converged = false;    ///< error ≤ tolerance × size (or the rounding floor, see below)
+  S error{};                 ///< final error estimate, ‖N + d·n(N) − Q‖, length units
 };
 
 /// Distance from p_SQ (in the shape's frame S) to the surface.
@@ -99,25 +99,27 @@ struct PointDistanceResult {
 /// @throws std::invalid_argument if p_SQ is not finite, the tolerance is not finite and > 0,
 ///         or max_iterations < 1; the message names the value. Never returns NaN.
 template <typename S>
-FSE_EXPORT PointDistanceResult<S> pointDistance(const Superellipsoid<S>& shape,
-                                                const detail::NonDeduced<Vector3<S>>& p_SQ,
-                                                const detail::NonDeduced<DistanceOptions<S>>& options = {});
+FSE_EXPORT PointDistanceResult<S> pointDistance(
+    const Superellipsoid<S>& shape, const detail::NonDeduced<Vector3<S>>& p_SQ,
+    const detail::NonDeduced<DistanceOptions<S>>& options = {});
 
 /// The same for a world point p_WQ and the shape's pose X_WS; nearest_point and normal are
 /// returned in the world frame W.
 template <typename S>
-FSE_EXPORT PointDistanceResult<S> pointDistance(const Superellipsoid<S>& shape,
-                                                const detail::NonDeduced<fcl::Transform3<S>>& X_WS,
-                                                const detail::NonDeduced<Vector3<S>>& p_WQ,
-                                                const detail::NonDeduced<DistanceOptions<S>>& options = {});
+FSE_EXPORT PointDistanceResult<S> pointDistance(
+    const Superellipsoid<S>& shape, const detail::NonDeduced<fcl::Transform3<S>>& X_WS,
+    const detail::NonDeduced<Vector3<S>>& p_WQ,
+    const detail::NonDeduced<DistanceOptions<S>>& options = {});
 
-extern template FSE_EXPORT PointDistanceResult<float> pointDistance(
-    const Superellipsoid<float>&, const Vector3<float>&, const DistanceOptions<float>&);
+extern template FSE_EXPORT PointDistanceResult<float> pointDistance(const Superellipsoid<float>&,
+                                                                    const Vector3<float>&,
+                                                                    const DistanceOptions<float>&);
 extern template FSE_EXPORT PointDistanceResult<double> pointDistance(
     const Superellipsoid<double>&, const Vector3<double>&, const DistanceOptions<double>&);
-extern template FSE_EXPORT PointDistanceResult<float> pointDistance(
-    const Superellipsoid<float>&, const fcl::Transform3<float>&, const Vector3<float>&,
-    const DistanceOptions<float>&);
+extern template FSE_EXPORT PointDistanceResult<float> pointDistance(const Superellipsoid<float>&,
+                                                                    const fcl::Transform3<float>&,
+                                                                    const Vector3<float>&,
+                                                                    const DistanceOptions<float>&);
 extern template FSE_EXPORT PointDistanceResult<double> pointDistance(
     const Superellipsoid<double>&, const fcl::Transform3<double>&, const Vector3<double>&,
     const DistanceOptions<double>&);

@@ -20,10 +20,10 @@
 /// taken of a number in [0, 1]: no overflow for ε → 0 or far points, and no loss of the
 /// small terms that matter when one exponent is near 2 and the other near 0.
 
+#include <fcl/geometry/shape/shape_base.h>
+
 #include <iosfwd>
 #include <vector>
-
-#include <fcl/geometry/shape/shape_base.h>
 
 #include "fcl_superellipsoid/export.h"
 

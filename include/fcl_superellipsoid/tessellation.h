@@ -5,12 +5,12 @@
 /// Triangle meshes of a superellipsoid: for FCL's BVH queries (the paper's baseline), for
 /// display, and as vertex sets for the point-distance solvers.
 
+#include <fcl/geometry/bvh/BVH_model.h>
+
 #include <iosfwd>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <fcl/geometry/bvh/BVH_model.h>
 
 #include "fcl_superellipsoid/superellipsoid.h"
 

@@ -1,8 +1,8 @@
 // An out-of-tree user of the installed package: build, link, and check a few answers.
+#include <fcl_superellipsoid/superellipsoid.h>
+
 #include <cmath>
 #include <cstdio>
-
-#include <fcl_superellipsoid/superellipsoid.h>
 
 int main() {
   const fcl_superellipsoid::Superellipsoidd sphere(1, 1, 1, 1, 1);
