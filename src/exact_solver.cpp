@@ -50,8 +50,10 @@ using Vector4 = Eigen::Matrix<S, 4, 1>;
 /// A candidate answer in the first octant.
 template <typename S>
 struct Candidate {
-  Vector3<S> point;   // on the surface
-  Vector3<S> normal;  // unit outward normal at point
+  Vector3<S> point;                // on the surface
+  Vector3<S> normal;               // unit outward normal at point
+  Vector3<S> gradient;             // ∇G at point
+  Eigen::Matrix<S, 3, 3> hessian;  // ∇²G at point
   S error = std::numeric_limits<S>::infinity();
   int iterations = 0;
 };
@@ -67,7 +69,7 @@ class ExactSolver {
 
   PointDistanceResult<S> solve() {
     const S g_y = primal_.value(y_);
-    if (g_y == S(1)) return finish(candidateAt(y_), false);
+    if (g_y == S(1)) return finish(candidateOnRay(y_), false);
     inside_ = g_y < S(1);
     sign_ = inside_ ? S(-1) : S(1);
     if (g_y == S(0)) {
@@ -76,20 +78,20 @@ class ExactSolver {
       return finish(centre, true);
     }
 
-    Candidate<S> best = refine(candidateAt(Vector3<S>(y_ / g_y)));
+    Candidate<S> best = refine(candidateOnRay(y_));
     if (!inside_ && best.error > q_.tolerance) {
       // On elongated shapes the radial start can be far off. The surface points whose normal
       // points at Q, and along the best answer's contact direction, are better starts.
       for (const Vector3<S>& direction : {Vector3<S>(y_), Vector3<S>(y_ - best.point)}) {
         const Vector3<S> n = direction.normalized();
         if (!n.allFinite()) continue;
-        const Candidate<S> other = refine(candidateAt(dual_.evaluate(n, false).gradient));
+        const Candidate<S> other = refine(candidateOnRay(dual_.evaluate(n, false).gradient));
         if (isBetter(other, best)) best = other;
       }
     }
     if (inside_) {
       for (const Vector3<S>& start : axisProjections()) {
-        const Candidate<S> other = refine(candidateAt(start));
+        const Candidate<S> other = refine(candidateOnRay(start));
         if (isBetter(other, best)) best = other;
       }
       // On a coordinate plane every start above lies on it too, and the plane is a mirror
@@ -104,12 +106,11 @@ class ExactSolver {
         tilted[i] += S(0.5) * q_.shape.radii()[i];
         all_tilted[i] = tilted[i];
         ++planes;
-        const Candidate<S> other = refine(candidateAt(Vector3<S>(tilted / primal_.value(tilted))));
+        const Candidate<S> other = refine(candidateOnRay(tilted));
         if (isBetter(other, best)) best = other;
       }
       if (planes > 1) {
-        const Candidate<S> other =
-            refine(candidateAt(Vector3<S>(all_tilted / primal_.value(all_tilted))));
+        const Candidate<S> other = refine(candidateOnRay(all_tilted));
         if (isBetter(other, best)) best = other;
       }
     }
@@ -132,12 +133,12 @@ class ExactSolver {
     for (int i = 0; i < 3; ++i) {
       Vector3<S> tip = Vector3<S>::Zero();
       tip[i] = q_.shape.radii()[i];
-      const Candidate<S> c = candidateAt(tip);
+      const Candidate<S> c = candidateOnRay(tip);
       if (i == 0 || (c.point.squaredNorm() < best.point.squaredNorm())) best = c;
     }
     for (const Vector3<S>& direction :
          {Vector3<S>(1, 1, 1), Vector3<S>(1, 1, 0), Vector3<S>(1, 0, 1), Vector3<S>(0, 1, 1)}) {
-      const Candidate<S> c = refine(candidateAt(Vector3<S>(direction / primal_.value(direction))));
+      const Candidate<S> c = refine(candidateOnRay(direction));
       if (c.error <= q_.tolerance && c.point.squaredNorm() < best.point.squaredNorm()) best = c;
     }
     return best;
@@ -159,18 +160,19 @@ class ExactSolver {
     return c;
   }
 
-  Candidate<S> candidateAt(const Vector3<S>& point) const {
+  /// The candidate where the ray from the centre through `ray` meets the surface, with G's
+  /// gradient and Hessian there, from one evaluation at `ray` itself: ∇G is 0-homogeneous and
+  /// ∇²G is (−1)-homogeneous, so at N = ray/G(ray) they are ∇G(ray) and G(ray)·∇²G(ray).
+  Candidate<S> candidateOnRay(const Vector3<S>& ray) const {
     Candidate<S> c;
-    c.point = point;
-    c.normal = unitGradient(point);
-    c.error = errorAt(point, c.normal);
+    const NestedNormEval<S> e = primal_.evaluate(ray, true);
+    c.point = ray / e.value;
+    c.gradient = e.gradient;
+    c.hessian = e.value * e.hessian;
+    const S n = e.gradient.norm();
+    c.normal = n > S(0) ? Vector3<S>(e.gradient / n) : Vector3<S>::UnitZ();
+    c.error = c.point.allFinite() ? errorAt(c.point, c.normal) : std::numeric_limits<S>::infinity();
     return c;
-  }
-
-  Vector3<S> unitGradient(const Vector3<S>& point) const {
-    const Vector3<S> g = primal_.evaluate(point, false).gradient;
-    const S n = g.norm();
-    return n > S(0) ? Vector3<S>(g / n) : Vector3<S>::UnitZ();
   }
 
   /// Paper Eq. 7 with d = ±‖Q − N‖.
@@ -236,58 +238,66 @@ class ExactSolver {
   Candidate<S> newtonPrimal(Candidate<S> c) {
     while (c.error > q_.tolerance && iterations_ < limit_) {
       ++iterations_;
-      const NestedNormEval<S> e = primal_.evaluate(c.point, true);
-      const S mu = e.gradient.dot(y_ - c.point) / e.gradient.squaredNorm();
+      // ∇G and ∇²G at c.point come with the candidate (one evaluation per trial point).
+      const S mu = c.gradient.dot(y_ - c.point) / c.gradient.squaredNorm();
       // Residual of Q − N = μ∇G; G(N) = 1 holds (N is re-projected every step).
-      const Vector3<S> residual = y_ - c.point - mu * e.gradient;
+      const Vector3<S> residual = y_ - c.point - mu * c.gradient;
       Vector3<S> step;
-      const Vector3<S> n = e.gradient.normalized();
       const Eigen::Matrix<S, 3, 3> a =
-          convexified(Eigen::Matrix<S, 3, 3>::Identity() + mu * e.hessian, n, S(1));
-      if (!solveBordered(a, e.gradient, residual, S(0), &step)) break;
-      if (!tryStep(&c, step, [this](const Vector3<S>& p) { return p / primal_.value(p); })) break;
+          convexified(Eigen::Matrix<S, 3, 3>::Identity() + mu * c.hessian, c.normal, S(1));
+      if (!solveBordered(a, c.gradient, residual, S(0), &step)) break;
+      if (!tryStep(&c, step)) break;
     }
     return c;
   }
 
   Candidate<S> newtonDual(Candidate<S> c) {
+    // The dual iterate is the normal n; its surface point is ∇h(n), whose normal is n itself,
+    // so a trial costs one evaluation of h (with the Hessian, reused by the next iteration).
     Vector3<S> n = c.normal;
+    NestedNormEval<S> e = dual_.evaluate(n, true);
+    bool moved = false;
     while (c.error > q_.tolerance && iterations_ < limit_) {
       ++iterations_;
-      const NestedNormEval<S> e = dual_.evaluate(n, true);
-      const Vector3<S> point = e.gradient;  // ∇h(n): the surface point of normal n
+      const Vector3<S> point = e.gradient;
       const S d = n.dot(y_ - point);
       const Vector3<S> residual = y_ - point - d * n;
       const Eigen::Matrix<S, 3, 3> a =
           convexified(e.hessian + d * Eigen::Matrix<S, 3, 3>::Identity(), n, std::abs(d));
       Vector3<S> step;
       if (!solveBordered(a, n, residual, S(0), &step)) break;
-      // The dual iterate is the normal; the candidate's point follows from it.
-      Vector3<S> trial_n;
       bool improved = false;
       for (int halving = 0; halving < 5 && !improved; ++halving) {
-        trial_n = stayInOctant(n, Vector3<S>(n + step)).normalized();
-        const Vector3<S> p = dual_.evaluate(trial_n, false).gradient;
-        Candidate<S> trial = candidateAt(p);
-        if (trial.error < c.error) {
-          c = trial;
+        const Vector3<S> trial_n = stayInOctant(n, Vector3<S>(n + step)).normalized();
+        const NestedNormEval<S> trial = dual_.evaluate(trial_n, true);
+        const S error = errorAt(trial.gradient, trial_n);
+        if (error < c.error) {
+          c.point = trial.gradient;
+          c.normal = trial_n;
+          c.error = error;
           n = trial_n;
-          improved = true;
+          e = trial;
+          improved = moved = true;
         }
         step *= S(0.5);
       }
       if (!improved) break;
     }
-    return c;
+    // Back to the primal's view of the final point (its own normal, gradient and Hessian), so
+    // the error reported and any primal iterations that follow are the primal's.
+    if (!moved) return c;
+    Candidate<S> out = candidateOnRay(c.point);
+    return out.error <= c.error ? out : Candidate<S>{c.point,     c.normal, out.gradient,
+                                                     out.hessian, c.error,  0};
   }
 
-  /// Applies a primal step with halving; false if no trial reduced the error.
-  template <typename Project>
-  bool tryStep(Candidate<S>* c, Vector3<S> step, Project project) {
+  /// Applies a primal step (re-projected radially onto the surface) with halving; false if no
+  /// trial reduced the error.
+  bool tryStep(Candidate<S>* c, Vector3<S> step) {
     for (int halving = 0; halving < 5; ++halving) {
-      const Vector3<S> p = project(stayInOctant(c->point, Vector3<S>(c->point + step)));
-      if (p.allFinite()) {
-        Candidate<S> trial = candidateAt(p);
+      const Vector3<S> p = stayInOctant(c->point, Vector3<S>(c->point + step));
+      if (p.allFinite() && p.squaredNorm() > S(0)) {
+        Candidate<S> trial = candidateOnRay(p);
         if (trial.error < c->error) {
           *c = trial;
           return true;
