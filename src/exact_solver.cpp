@@ -23,8 +23,8 @@
 //
 // Starts: outside, the radial projection (the problem is convex: one minimum), then, if that
 // stalls, the surface points whose normals point at Q and along the contact direction found
-// (∇h(n), the support point). Inside, the
-// problem is not convex (points on the medial axis have several nearest points; a box-like
+// (∇h(n), the support point), and the radial projection of Q clamped into the bounding box. Inside,
+// the problem is not convex (points on the medial axis have several nearest points; a box-like
 // shape has a local minimum on each face), so Newton also runs from the three axis
 // projections (closed form: move one coordinate until G = 1), and the nearest converged
 // answer wins. All starts share one iteration budget.
@@ -86,6 +86,13 @@ class ExactSolver {
         const Vector3<S> n = direction.normalized();
         if (!n.allFinite()) continue;
         const Candidate<S> other = refine(candidateOnRay(dual_.evaluate(n, false).gradient));
+        if (isBetter(other, best)) best = other;
+      }
+      // Q clamped into the bounding box, then projected radially: on a cigar-like shape this
+      // lands beside Q along the long axis, away from the sharp tips where Newton stalls.
+      const Vector3<S> clamped = y_.cwiseMin(q_.shape.radii());
+      if (best.error > q_.tolerance && clamped.squaredNorm() > S(0)) {
+        const Candidate<S> other = refine(candidateOnRay(clamped));
         if (isBetter(other, best)) best = other;
       }
     }
@@ -153,9 +160,17 @@ class ExactSolver {
     const S primal_roughness = std::max({S(0), e1 - S(1), e2 - S(1)});
     const S dual_roughness = std::max({S(0), S(1) - e1, S(1) - e2});
     const bool primal_first = primal_roughness <= dual_roughness;
+    const Candidate<S> start = c;
     c = primal_first ? newtonPrimal(c) : newtonDual(c);
     if (c.error > q_.tolerance && iterations_ < limit_) {
-      c = primal_first ? newtonDual(c) : newtonPrimal(c);
+      // The other formulation, warm-started where the first stopped and, since the first may
+      // have walked somewhere useless (toward a sharp tip), also from the original start.
+      const Candidate<S> warm = primal_first ? newtonDual(c) : newtonPrimal(c);
+      if (isBetter(warm, c)) c = warm;
+      if (c.error > q_.tolerance && iterations_ < limit_) {
+        const Candidate<S> fresh = primal_first ? newtonDual(start) : newtonPrimal(start);
+        if (isBetter(fresh, c)) c = fresh;
+      }
     }
     return c;
   }
