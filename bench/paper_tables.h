@@ -15,7 +15,8 @@ struct PaperTablesConfig {
 };
 
 /// The paper's Tables 1–4 protocol: for each of its 7 shapes, surface points offset by +0.05
-/// and −0.015 along the normal, answered by Radial, Paper (1e-3, 30 iterations) and Exact;
+/// and −0.015 along the normal, answered by Radial, Paper (1e-3, 30 iterations) and Exact
+/// (at 1e-9, the speed target's tolerance, and at its default 1e-12);
 /// prints the tables with the paper's values beside ours and returns 0.
 int runPaperTables(const PaperTablesConfig& config);
 
