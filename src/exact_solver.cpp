@@ -65,7 +65,8 @@ class ExactSolver {
       : q_(q),
         y_(q.x.cwiseAbs()),
         primal_(NestedNorm<S>::gauge(q.shape)),
-        dual_(NestedNorm<S>::support(q.shape)) {}
+        dual_(NestedNorm<S>::support(q.shape)),
+        primal_first_(primalIsSmoother(q.shape)) {}
 
   PointDistanceResult<S> solve() {
     const S g_y = primal_.value(y_);
@@ -84,23 +85,15 @@ class ExactSolver {
       // points at Q, and along the best answer's contact direction, are better starts.
       for (const Vector3<S>& direction : {Vector3<S>(y_), Vector3<S>(y_ - best.point)}) {
         const Vector3<S> n = direction.normalized();
-        if (!n.allFinite()) continue;
-        const Candidate<S> other = refine(candidateOnRay(dual_.evaluate(n, false).gradient));
-        if (isBetter(other, best)) best = other;
+        if (n.allFinite()) tryStart(dual_.evaluate(n, false).gradient, &best);
       }
       // Q clamped into the bounding box, then projected radially: on a cigar-like shape this
       // lands beside Q along the long axis, away from the sharp tips where Newton stalls.
       const Vector3<S> clamped = y_.cwiseMin(q_.shape.radii());
-      if (best.error > q_.tolerance && clamped.squaredNorm() > S(0)) {
-        const Candidate<S> other = refine(candidateOnRay(clamped));
-        if (isBetter(other, best)) best = other;
-      }
+      if (best.error > q_.tolerance && clamped.squaredNorm() > S(0)) tryStart(clamped, &best);
     }
     if (inside_) {
-      for (const Vector3<S>& start : axisProjections()) {
-        const Candidate<S> other = refine(candidateOnRay(start));
-        if (isBetter(other, best)) best = other;
-      }
+      for (const Vector3<S>& start : axisProjections()) tryStart(start, &best);
       // On a coordinate plane every start above lies on it too, and the plane is a mirror
       // symmetry: Newton never leaves it, though for ε > 1 the nearest points can be off it
       // (the plane is a saddle there). Start once more from a point tilted off each such plane.
@@ -113,13 +106,9 @@ class ExactSolver {
         tilted[i] += S(0.5) * q_.shape.radii()[i];
         all_tilted[i] = tilted[i];
         ++planes;
-        const Candidate<S> other = refine(candidateOnRay(tilted));
-        if (isBetter(other, best)) best = other;
+        tryStart(tilted, &best);
       }
-      if (planes > 1) {
-        const Candidate<S> other = refine(candidateOnRay(all_tilted));
-        if (isBetter(other, best)) best = other;
-      }
+      if (planes > 1) tryStart(all_tilted, &best);
     }
     if (g_y < S(0.5)) {  // deep inside: the centre's candidates may be nearer still
       const Candidate<S> other = solveAtCentre();
@@ -151,24 +140,36 @@ class ExactSolver {
     return best;
   }
 
-  /// Newton in the smoother formulation first, then in the other from where it stopped.
+  /// The primal is smooth where ε ≤ 1, the dual where ε ≥ 1: start with the one whose worst
+  /// exponent strays less from its smooth side.
+  static bool primalIsSmoother(const Superellipsoid<S>& shape) {
+    const S e1 = shape.eps1(), e2 = shape.eps2();
+    const S primal_roughness = std::max({S(0), e1 - S(1), e2 - S(1)});
+    const S dual_roughness = std::max({S(0), S(1) - e1, S(1) - e2});
+    return primal_roughness <= dual_roughness;
+  }
+
+  /// Runs Newton from a start (the ray's surface point) and keeps the result if it beats best.
+  void tryStart(const Vector3<S>& ray, Candidate<S>* best) {
+    const Candidate<S> c = refine(candidateOnRay(ray));
+    if (isBetter(c, *best)) *best = c;
+  }
+
+  /// Newton in the smoother formulation first; if that stalls, in the other, warm-started where
+  /// the first stopped and then from the original start.
   Candidate<S> refine(Candidate<S> c) {
     // Each start gets at most kIterationsPerStart of the shared budget, so one start creeping
     // along a saddle cannot starve the start that leads to the answer.
     limit_ = std::min(q_.max_iterations, iterations_ + kIterationsPerStart);
-    const S e1 = q_.shape.eps1(), e2 = q_.shape.eps2();
-    const S primal_roughness = std::max({S(0), e1 - S(1), e2 - S(1)});
-    const S dual_roughness = std::max({S(0), S(1) - e1, S(1) - e2});
-    const bool primal_first = primal_roughness <= dual_roughness;
     const Candidate<S> start = c;
-    c = primal_first ? newtonPrimal(c) : newtonDual(c);
+    c = primal_first_ ? newtonPrimal(c) : newtonDual(c);
     if (c.error > q_.tolerance && iterations_ < limit_) {
       // The other formulation, warm-started where the first stopped and, since the first may
       // have walked somewhere useless (toward a sharp tip), also from the original start.
-      const Candidate<S> warm = primal_first ? newtonDual(c) : newtonPrimal(c);
+      const Candidate<S> warm = primal_first_ ? newtonDual(c) : newtonPrimal(c);
       if (isBetter(warm, c)) c = warm;
       if (c.error > q_.tolerance && iterations_ < limit_) {
-        const Candidate<S> fresh = primal_first ? newtonDual(start) : newtonPrimal(start);
+        const Candidate<S> fresh = primal_first_ ? newtonDual(start) : newtonPrimal(start);
         if (isBetter(fresh, c)) c = fresh;
       }
     }
@@ -365,6 +366,7 @@ class ExactSolver {
   const Query<S>& q_;
   Vector3<S> y_;
   NestedNorm<S> primal_, dual_;
+  bool primal_first_;  // which formulation refine() tries first
   bool inside_ = false;
   S sign_ = S(1);
   int iterations_ = 0;
