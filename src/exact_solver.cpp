@@ -23,11 +23,13 @@
 //
 // Starts: outside, the radial projection (the problem is convex: one minimum), then, if that
 // stalls, the surface points whose normals point at Q and along the contact direction found
-// (∇h(n), the support point), and the radial projection of Q clamped into the bounding box. Inside,
+// (∇h(n), the support point), and the radial projection of Q clamped into the bounding box; if
+// Newton still stalls, the bracketed nested projection of outside_projection.h settles it. Inside,
 // the problem is not convex (points on the medial axis have several nearest points; a box-like
 // shape has a local minimum on each face), so Newton also runs from the three axis
 // projections (closed form: move one coordinate until G = 1), and the nearest converged
-// answer wins. All starts share one iteration budget.
+// answer wins; deep inside an elongated shape, also from the diagonals of the cross-sections.
+// Each start has its own share of one iteration budget.
 //
 // Convergence is judged by the paper's error (Eq. 7) so all methods share one yardstick.
 
@@ -36,6 +38,7 @@
 #include <cmath>
 
 #include "nested_norm.h"
+#include "outside_projection.h"
 #include "solvers.h"
 
 namespace fcl_superellipsoid {
@@ -91,9 +94,33 @@ class ExactSolver {
       // lands beside Q along the long axis, away from the sharp tips where Newton stalls.
       const Vector3<S> clamped = y_.cwiseMin(q_.shape.radii());
       if (best.error > q_.tolerance && clamped.squaredNorm() > S(0)) tryStart(clamped, &best);
+      if (best.error > q_.tolerance) {
+        // Newton stalled (mixed exponents on an elongated shape). The bracketed projection is
+        // exact; every surface point is at least the distance away, so the nearer point wins
+        // even if its Eq. 7 error, which needs the normal, stays above the tolerance at a crease.
+        const Candidate<S> projected = candidateOnRay(projectOutside(q_.shape, y_));
+        if ((y_ - projected.point).squaredNorm() <= (y_ - best.point).squaredNorm()) {
+          best = projected;
+        }
+      }
     }
     if (inside_) {
       for (const Vector3<S>& start : axisProjections()) tryStart(start, &best);
+      // Deep in an elongated shape the nearest point can lie off the axis directions of the
+      // cross-section through Q (a diamond-like cross-section, ε > 1, is nearest on its
+      // diagonal faces). When the answer so far is farther than a quarter of a cross-section's
+      // smaller radius, start once more along that cross-section's diagonal.
+      const Vector3<S>& a = q_.shape.radii();
+      const S best_distance = (y_ - best.point).norm();
+      for (int i = 0; i < 3; ++i) {
+        const int j = (i + 1) % 3, k = (i + 2) % 3;
+        if (best_distance > S(0.25) * std::min(a[j], a[k])) {
+          Vector3<S> start = y_;
+          start[j] += S(0.5) * a[j];
+          start[k] += S(0.5) * a[k];
+          tryStart(start, &best);
+        }
+      }
       // On a coordinate plane every start above lies on it too, and the plane is a mirror
       // symmetry: Newton never leaves it, though for ε > 1 the nearest points can be off it
       // (the plane is a saddle there). Start once more from a point tilted off each such plane.
@@ -218,9 +245,12 @@ class ExactSolver {
   /// The Newton matrix restricted to the tangent plane (normal n) must be positive definite
   /// for the step to head for a minimum of the distance. Outside it always is (the shape is
   /// convex); inside it is not beyond a focal point (|d| > a radius of curvature), where the
-  /// iterate sits near a saddle such as the tip of a creased shape (ε > 1). There the matrix
-  /// is shifted by a multiple of I until its smallest tangent eigenvalue is 10 % of `scale`:
-  /// a damped step uphill on the Lagrangian's curvature, not toward the saddle.
+  /// iterate sits near a saddle such as the tip of a creased shape (ε > 1). There (smallest
+  /// tangent eigenvalue below 1e-4 × `scale`) the matrix is shifted by a multiple of I until
+  /// that eigenvalue is 10 % of `scale`: a damped step uphill on the Lagrangian's curvature, not
+  /// toward the saddle. Small positive eigenvalues are left alone: near a focal ring (Q close
+  /// to the axis of a round cross-section) the full Newton step is the one that converges; a
+  /// shift there made the iterate creep along the ring for hundreds of iterations.
   static Eigen::Matrix<S, 3, 3> convexified(const Eigen::Matrix<S, 3, 3>& a, const Vector3<S>& n,
                                             S scale) {
     // An orthonormal tangent basis t1, t2 of n, and the 2×2 tangent block.
@@ -231,7 +261,7 @@ class ExactSolver {
     const S mean = (b11 + b22) / 2, half_gap = std::hypot((b11 - b22) / 2, b12);
     const S lowest = mean - half_gap;
     const S wanted = S(0.1) * scale;
-    if (lowest >= wanted || !std::isfinite(lowest)) return a;
+    if (lowest >= S(1e-4) * scale || !std::isfinite(lowest)) return a;
     return a + (wanted - lowest) * Eigen::Matrix<S, 3, 3>::Identity();
   }
 
