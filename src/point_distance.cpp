@@ -23,6 +23,13 @@ void validate(const Vector3<S>& p, const DistanceOptions<S>& options) {
     v << "(" << p[0] << ", " << p[1] << ", " << p[2] << ")";
     throwInvalid("the query point must be finite", v.str());
   }
+  validateOptions(options);
+}
+
+}  // namespace
+
+template <typename S>
+void validateOptions(const DistanceOptions<S>& options) {
   if (!(std::isfinite(options.tolerance) && options.tolerance > S(0))) {
     throwInvalid("options.tolerance must be finite and > 0", options.tolerance);
   }
@@ -31,7 +38,8 @@ void validate(const Vector3<S>& p, const DistanceOptions<S>& options) {
   }
 }
 
-}  // namespace
+template void validateOptions(const DistanceOptions<float>&);
+template void validateOptions(const DistanceOptions<double>&);
 
 const char* toString(DistanceMethod method) {
   switch (method) {

@@ -10,6 +10,9 @@
 #include "nested_norm.h"
 
 namespace fcl_superellipsoid {
+
+void registerWithFcl();  // fcl_integration.h; declared here to keep FCL's headers out
+
 namespace {
 
 template <typename S>
@@ -47,6 +50,13 @@ Superellipsoid<S>::Superellipsoid(const Vector3<S>& radii, S eps1, S eps2)
   checkExponent("exponent eps1", eps1);
   checkExponent("exponent eps2", eps2);
   computeLocalAABB();
+  registerWithFcl();  // FCL's function tables learn the shape before its first query
+}
+
+template <typename S>
+void Superellipsoid<S>::setQueryOptions(const DistanceOptions<S>& options) {
+  validateOptions(options);
+  query_options_ = options;
 }
 
 template <typename S>

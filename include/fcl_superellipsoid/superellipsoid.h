@@ -25,6 +25,7 @@
 #include <iosfwd>
 #include <vector>
 
+#include "fcl_superellipsoid/distance_options.h"
 #include "fcl_superellipsoid/export.h"
 
 namespace fcl_superellipsoid {
@@ -74,6 +75,12 @@ class FSE_EXPORT Superellipsoid : public fcl::ShapeBase<S> {
   /// True if p_S is inside or on the surface (G ≤ 1).
   bool contains(const Vector3<S>& p_S) const;
 
+  /// The options FCL queries against this shape use (fcl_integration.h: mesh vertices,
+  /// spheres). Default: the Exact method with its default tolerance.
+  const DistanceOptions<S>& queryOptions() const { return query_options_; }
+  /// @throws std::invalid_argument naming the bad value (see validateOptions).
+  void setQueryOptions(const DistanceOptions<S>& options);
+
   // --- fcl::CollisionGeometry interface -------------------------------------------------
   /// Tight box ±a_i; aabb_center = 0, aabb_radius = ‖a‖.
   void computeLocalAABB() override;
@@ -92,6 +99,7 @@ class FSE_EXPORT Superellipsoid : public fcl::ShapeBase<S> {
   Vector3<S> radii_;
   S eps1_;
   S eps2_;
+  DistanceOptions<S> query_options_;
 };
 
 template <typename S>

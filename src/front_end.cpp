@@ -1,0 +1,21 @@
+// The front end for double, and the one-time registration of the table entries.
+#include <mutex>
+
+#include "fcl_tables.h"
+#include "front_end.h"
+
+FSE_INSTANTIATE_FRONT_END(double)
+
+namespace fcl_superellipsoid {
+
+void registerWithFcl() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    detail::registerDistanceTableDouble();
+    detail::registerDistanceTableFloat();
+    detail::registerCollisionTableDouble();
+    detail::registerCollisionTableFloat();
+  });
+}
+
+}  // namespace fcl_superellipsoid
