@@ -25,3 +25,4 @@ run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/test/consumer -B ${WORK_DIR}/consumer-buil
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/consumer-build)
 set(ENV{LD_LIBRARY_PATH} "${prefix}/lib:${prefix}/lib64:$ENV{LD_LIBRARY_PATH}")
 run(${WORK_DIR}/consumer-build/consumer)
+run(${WORK_DIR}/consumer-build/scene)
