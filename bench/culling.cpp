@@ -32,9 +32,10 @@ int runCulling(int vertices) {
   auto seconds = [](Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
   };
-  std::printf("BVH vertex traversal vs brute force: %d-vertex point cloud (OBBRSS), %d within "
-              "0.05 of the surface, shape (1, 0.8, 0.6; 0.5, 1.2), Exact solver\n\n",
-              vertices, near);
+  std::printf(
+      "BVH vertex traversal vs brute force: %d-vertex point cloud (OBBRSS), %d within "
+      "0.05 of the surface, shape (1, 0.8, 0.6; 0.5, 1.2), Exact solver\n\n",
+      vertices, near);
   // Brute force: every vertex through the point solver.
   Clock::time_point t0 = Clock::now();
   double brute = std::numeric_limits<double>::infinity();
@@ -71,10 +72,11 @@ int runCulling(int vertices) {
                 100.0 * s.vertices_bounded / vertices, 100.0 * s.vertices_solved / vertices,
                 1e3 * t, t_brute / t);
   }
-  std::printf("\nbrute force: %zu penetrating vertices. 'reached': vertices the traversal "
-              "bounded; 'solved': those\nthat needed the point solver. Speedup: brute-force "
-              "time / traversal time, same process.\n",
-              brute_inside);
+  std::printf(
+      "\nbrute force: %zu penetrating vertices. 'reached': vertices the traversal "
+      "bounded; 'solved': those\nthat needed the point solver. Speedup: brute-force "
+      "time / traversal time, same process.\n",
+      brute_inside);
   return 0;
 }
 

@@ -13,8 +13,9 @@ getDistanceFunctionLookTable<detail::GJKSolver_libccd<double>>();
 namespace fcl_superellipsoid {
 namespace detail {
 void registerDistanceTableDouble() {
-  writeEntries(fcl::getDistanceFunctionLookTable<fcl::detail::GJKSolver_libccd<double>>().distance_matrix,
-               &distanceEntry<double>);
+  writeEntries(
+      fcl::getDistanceFunctionLookTable<fcl::detail::GJKSolver_libccd<double>>().distance_matrix,
+      &distanceEntry<double>);
 }
 }  // namespace detail
 }  // namespace fcl_superellipsoid

@@ -13,8 +13,9 @@ getDistanceFunctionLookTable<detail::GJKSolver_libccd<float>>();
 namespace fcl_superellipsoid {
 namespace detail {
 void registerDistanceTableFloat() {
-  writeEntries(fcl::getDistanceFunctionLookTable<fcl::detail::GJKSolver_libccd<float>>().distance_matrix,
-               &distanceEntry<float>);
+  writeEntries(
+      fcl::getDistanceFunctionLookTable<fcl::detail::GJKSolver_libccd<float>>().distance_matrix,
+      &distanceEntry<float>);
 }
 }  // namespace detail
 }  // namespace fcl_superellipsoid

@@ -20,9 +20,9 @@
 namespace fcl_superellipsoid {
 namespace detail {
 
-constexpr fcl::NODE_TYPE kMeshNodeTypes[] = {fcl::BV_AABB,    fcl::BV_OBB,     fcl::BV_RSS,
-                                             fcl::BV_kIOS,    fcl::BV_OBBRSS,  fcl::BV_KDOP16,
-                                             fcl::BV_KDOP18,  fcl::BV_KDOP24};
+constexpr fcl::NODE_TYPE kMeshNodeTypes[] = {fcl::BV_AABB,   fcl::BV_OBB,    fcl::BV_RSS,
+                                             fcl::BV_kIOS,   fcl::BV_OBBRSS, fcl::BV_KDOP16,
+                                             fcl::BV_KDOP18, fcl::BV_KDOP24};
 
 template <typename S>
 S distanceEntry(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1,

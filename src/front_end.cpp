@@ -1,8 +1,9 @@
 // The front end for double, and the one-time registration of the table entries.
+#include "front_end.h"
+
 #include <mutex>
 
 #include "fcl_tables.h"
-#include "front_end.h"
 
 FSE_INSTANTIATE_FRONT_END(double)
 

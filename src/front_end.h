@@ -26,7 +26,8 @@ template <typename S>
 S distance(const fcl::CollisionObject<S>* o1, const fcl::CollisionObject<S>* o2,
            const fcl::DistanceRequest<S>& request, fcl::DistanceResult<S>& result) {
   return fcl_superellipsoid::distance(o1->collisionGeometry().get(), o1->getTransform(),
-                  o2->collisionGeometry().get(), o2->getTransform(), request, result);
+                                      o2->collisionGeometry().get(), o2->getTransform(), request,
+                                      result);
 }
 
 template <typename S>
@@ -47,7 +48,8 @@ template <typename S>
 std::size_t collide(const fcl::CollisionObject<S>* o1, const fcl::CollisionObject<S>* o2,
                     const fcl::CollisionRequest<S>& request, fcl::CollisionResult<S>& result) {
   return fcl_superellipsoid::collide(o1->collisionGeometry().get(), o1->getTransform(),
-                 o2->collisionGeometry().get(), o2->getTransform(), request, result);
+                                     o2->collisionGeometry().get(), o2->getTransform(), request,
+                                     result);
 }
 
 template <typename S>
@@ -66,8 +68,8 @@ bool defaultCollisionFunction(fcl::CollisionObject<S>* o1, fcl::CollisionObject<
 }
 
 template <typename S>
-bool defaultDistanceFunction(fcl::CollisionObject<S>* o1, fcl::CollisionObject<S>* o2,
-                             void* data, S& dist) {
+bool defaultDistanceFunction(fcl::CollisionObject<S>* o1, fcl::CollisionObject<S>* o2, void* data,
+                             S& dist) {
   auto* distance_data = static_cast<fcl::DefaultDistanceData<S>*>(data);
   fcl::DistanceResult<S>& result = distance_data->result;
   if (distance_data->done) {
@@ -82,22 +84,22 @@ bool defaultDistanceFunction(fcl::CollisionObject<S>* o1, fcl::CollisionObject<S
 
 }  // namespace fcl_superellipsoid
 
-#define FSE_INSTANTIATE_FRONT_END(S)                                                          \
-  namespace fcl_superellipsoid {                                                              \
-  template S distance(const fcl::CollisionObject<S>*, const fcl::CollisionObject<S>*,         \
-                      const fcl::DistanceRequest<S>&, fcl::DistanceResult<S>&);               \
-  template S distance(const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&,            \
-                      const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&,            \
-                      const fcl::DistanceRequest<S>&, fcl::DistanceResult<S>&);               \
-  template std::size_t collide(const fcl::CollisionObject<S>*, const fcl::CollisionObject<S>*, \
-                               const fcl::CollisionRequest<S>&, fcl::CollisionResult<S>&);    \
-  template std::size_t collide(const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&,   \
-                               const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&,   \
-                               const fcl::CollisionRequest<S>&, fcl::CollisionResult<S>&);    \
-  template bool defaultCollisionFunction(fcl::CollisionObject<S>*, fcl::CollisionObject<S>*,  \
-                                         void*);                                              \
-  template bool defaultDistanceFunction(fcl::CollisionObject<S>*, fcl::CollisionObject<S>*,   \
-                                        void*, S&);                                           \
+#define FSE_INSTANTIATE_FRONT_END(S)                                                               \
+  namespace fcl_superellipsoid {                                                                   \
+  template S distance(const fcl::CollisionObject<S>*, const fcl::CollisionObject<S>*,              \
+                      const fcl::DistanceRequest<S>&, fcl::DistanceResult<S>&);                    \
+  template S distance(const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&,                 \
+                      const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&,                 \
+                      const fcl::DistanceRequest<S>&, fcl::DistanceResult<S>&);                    \
+  template std::size_t collide(const fcl::CollisionObject<S>*, const fcl::CollisionObject<S>*,     \
+                               const fcl::CollisionRequest<S>&, fcl::CollisionResult<S>&);         \
+  template std::size_t collide(const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&,        \
+                               const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&,        \
+                               const fcl::CollisionRequest<S>&, fcl::CollisionResult<S>&);         \
+  template bool defaultCollisionFunction(fcl::CollisionObject<S>*, fcl::CollisionObject<S>*,       \
+                                         void*);                                                   \
+  template bool defaultDistanceFunction(fcl::CollisionObject<S>*, fcl::CollisionObject<S>*, void*, \
+                                        S&);                                                       \
   }
 
 #endif  // FCL_SUPERELLIPSOID_SRC_FRONT_END_H

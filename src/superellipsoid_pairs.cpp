@@ -175,8 +175,7 @@ S pairDistance(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf
 template <typename S>
 std::size_t pairCollide(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1,
                         const fcl::CollisionGeometry<S>* o2, const fcl::Transform3<S>& tf2,
-                        const fcl::CollisionRequest<S>& request,
-                        fcl::CollisionResult<S>& result) {
+                        const fcl::CollisionRequest<S>& request, fcl::CollisionResult<S>& result) {
   const Pair<S> pair = makePair(o1, tf1, o2, tf2);
   if (pair.shape != nullptr) {
     if (request.num_max_contacts <= result.numContacts()) return result.numContacts();
@@ -191,7 +190,7 @@ std::size_t pairCollide(const fcl::CollisionGeometry<S>* o1, const fcl::Transfor
     }
     const bool handled = visitBvh(pair.other, [&](const auto& model) {
       for (const VertexHit<S>& h : penetratingVertices(model, *pair.X_WO, *pair.shape, *pair.X_WS,
-                                                        room, request.enable_contact)) {
+                                                       room, request.enable_contact)) {
         addContact(pair, o1, o2, fromVertex(h), h.point_W, request.enable_contact, result);
       }
     });
@@ -201,12 +200,12 @@ std::size_t pairCollide(const fcl::CollisionGeometry<S>* o1, const fcl::Transfor
   return 0;
 }
 
-#define FSE_INSTANTIATE_PAIRS(S)                                                              \
-  template bool involvesSuperellipsoid(const fcl::CollisionGeometry<S>*,                      \
-                                       const fcl::CollisionGeometry<S>*);                     \
-  template S pairDistance(const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&,        \
-                          const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&,        \
-                          const fcl::DistanceRequest<S>&, fcl::DistanceResult<S>&);           \
+#define FSE_INSTANTIATE_PAIRS(S)                                                                \
+  template bool involvesSuperellipsoid(const fcl::CollisionGeometry<S>*,                        \
+                                       const fcl::CollisionGeometry<S>*);                       \
+  template S pairDistance(const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&,          \
+                          const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&,          \
+                          const fcl::DistanceRequest<S>&, fcl::DistanceResult<S>&);             \
   template std::size_t pairCollide(const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&, \
                                    const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&, \
                                    const fcl::CollisionRequest<S>&, fcl::CollisionResult<S>&);

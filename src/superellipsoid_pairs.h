@@ -32,8 +32,7 @@ S pairDistance(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf
 template <typename S>
 std::size_t pairCollide(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1,
                         const fcl::CollisionGeometry<S>* o2, const fcl::Transform3<S>& tf2,
-                        const fcl::CollisionRequest<S>& request,
-                        fcl::CollisionResult<S>& result);
+                        const fcl::CollisionRequest<S>& request, fcl::CollisionResult<S>& result);
 
 }  // namespace detail
 }  // namespace fcl_superellipsoid

@@ -230,9 +230,9 @@ class VertexTraversal {
   const fcl::BVHModel<BV>& model_;
   const Superellipsoid<S>& shape_;
   fcl::Transform3<S> X_WM_, X_WS_, X_SM_;
-  Vector3<S> centre_M_;     // the shape's centre in M
-  fcl::Matrix3<S> R_MS_;    // the shape's axes in M
-  NestedNorm<S> support_;   // h, in the shape's frame
+  Vector3<S> centre_M_;    // the shape's centre in M
+  fcl::Matrix3<S> R_MS_;   // the shape's axes in M
+  NestedNorm<S> support_;  // h, in the shape's frame
   DistanceOptions<S> options_;
   VertexTraversalStats& stats_;
   std::unordered_set<int> seen_;  // triangle meshes: vertices already tested
@@ -262,13 +262,12 @@ std::vector<VertexHit<typename BV::S>> penetratingVertices(
   return VertexTraversal<BV>(model, X_WM, shape, X_WS).penetrating(max_count, with_depth);
 }
 
-#define FSE_INSTANTIATE_TRAVERSAL(BV)                                                        \
-  template VertexHit<BV::S> nearestVertex(const fcl::BVHModel<BV>&,                          \
-                                          const fcl::Transform3<BV::S>&,                     \
-                                          const Superellipsoid<BV::S>&,                      \
-                                          const fcl::Transform3<BV::S>&, bool);              \
-  template std::vector<VertexHit<BV::S>> penetratingVertices(                                \
-      const fcl::BVHModel<BV>&, const fcl::Transform3<BV::S>&, const Superellipsoid<BV::S>&, \
+#define FSE_INSTANTIATE_TRAVERSAL(BV)                                                              \
+  template VertexHit<BV::S> nearestVertex(const fcl::BVHModel<BV>&, const fcl::Transform3<BV::S>&, \
+                                          const Superellipsoid<BV::S>&,                            \
+                                          const fcl::Transform3<BV::S>&, bool);                    \
+  template std::vector<VertexHit<BV::S>> penetratingVertices(                                      \
+      const fcl::BVHModel<BV>&, const fcl::Transform3<BV::S>&, const Superellipsoid<BV::S>&,       \
       const fcl::Transform3<BV::S>&, std::size_t, bool);
 using Kdop16f = fcl::KDOP<float, 16>;
 using Kdop18f = fcl::KDOP<float, 18>;

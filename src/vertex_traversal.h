@@ -26,8 +26,8 @@ namespace detail {
 /// One vertex answered by the point solver; world frame.
 template <typename S>
 struct VertexHit {
-  int vertex = -1;  // index into the model's vertices; −1: none
-  S distance{};     // signed
+  int vertex = -1;                            // index into the model's vertices; −1: none
+  S distance{};                               // signed
   Vector3<S> point_W = Vector3<S>::Zero();    // the vertex
   Vector3<S> nearest_W = Vector3<S>::Zero();  // its nearest surface point
   Vector3<S> normal_W = Vector3<S>::Zero();   // outward normal there

@@ -59,7 +59,8 @@ Brute<S> bruteForce(const TriangleMesh<S>& mesh, const fcl::Transform3<S>& X_WM,
       b.point_W = p_W;
       b.nearest_W = r.nearest_point;
     }
-    if (shape.gauge(X_WS.inverse(Eigen::Isometry) * p_W) < S(1)) b.inside.push_back({r.distance, v});
+    if (shape.gauge(X_WS.inverse(Eigen::Isometry) * p_W) < S(1))
+      b.inside.push_back({r.distance, v});
   }
   std::sort(b.inside.begin(), b.inside.end());
   return b;
@@ -114,8 +115,10 @@ void checkAgainstBruteForce(bool point_cloud) {
       // Unsigned: −1 on penetration (FCL's convention), the distance otherwise.
       fcl::DistanceResult<S> unsigned_result;
       fcl_superellipsoid::distance(o1, o2, fcl::DistanceRequest<S>(), unsigned_result);
-      EXPECT_EQ(unsigned_result.min_distance, truth.distance < 0 ? S(-1) : unsigned_result.min_distance);
-      if (truth.distance >= 0) EXPECT_NEAR(unsigned_result.min_distance, truth.distance, tolerance<S>());
+      EXPECT_EQ(unsigned_result.min_distance,
+                truth.distance < 0 ? S(-1) : unsigned_result.min_distance);
+      if (truth.distance >= 0)
+        EXPECT_NEAR(unsigned_result.min_distance, truth.distance, tolerance<S>());
 
       // Collision: the deepest num_max_contacts penetrating vertices, deepest first.
       for (std::size_t max_contacts : {std::size_t(1), std::size_t(5), std::size_t(100000)}) {
@@ -162,14 +165,38 @@ TYPED_TEST(FclIntegrationTest, EveryBvTypeMatchesBruteForce) {
   using S = TypeParam;
   for (bool cloud : {true, false}) {
     SCOPED_TRACE(cloud ? "point cloud" : "triangle mesh");
-    { SCOPED_TRACE("AABB"); checkAgainstBruteForce<fcl::AABB<S>>(cloud); }
-    { SCOPED_TRACE("OBB"); checkAgainstBruteForce<fcl::OBB<S>>(cloud); }
-    { SCOPED_TRACE("RSS"); checkAgainstBruteForce<fcl::RSS<S>>(cloud); }
-    { SCOPED_TRACE("kIOS"); checkAgainstBruteForce<fcl::kIOS<S>>(cloud); }
-    { SCOPED_TRACE("OBBRSS"); checkAgainstBruteForce<fcl::OBBRSS<S>>(cloud); }
-    { SCOPED_TRACE("KDOP16"); checkAgainstBruteForce<fcl::KDOP<S, 16>>(cloud); }
-    { SCOPED_TRACE("KDOP18"); checkAgainstBruteForce<fcl::KDOP<S, 18>>(cloud); }
-    { SCOPED_TRACE("KDOP24"); checkAgainstBruteForce<fcl::KDOP<S, 24>>(cloud); }
+    {
+      SCOPED_TRACE("AABB");
+      checkAgainstBruteForce<fcl::AABB<S>>(cloud);
+    }
+    {
+      SCOPED_TRACE("OBB");
+      checkAgainstBruteForce<fcl::OBB<S>>(cloud);
+    }
+    {
+      SCOPED_TRACE("RSS");
+      checkAgainstBruteForce<fcl::RSS<S>>(cloud);
+    }
+    {
+      SCOPED_TRACE("kIOS");
+      checkAgainstBruteForce<fcl::kIOS<S>>(cloud);
+    }
+    {
+      SCOPED_TRACE("OBBRSS");
+      checkAgainstBruteForce<fcl::OBBRSS<S>>(cloud);
+    }
+    {
+      SCOPED_TRACE("KDOP16");
+      checkAgainstBruteForce<fcl::KDOP<S, 16>>(cloud);
+    }
+    {
+      SCOPED_TRACE("KDOP18");
+      checkAgainstBruteForce<fcl::KDOP<S, 18>>(cloud);
+    }
+    {
+      SCOPED_TRACE("KDOP24");
+      checkAgainstBruteForce<fcl::KDOP<S, 24>>(cloud);
+    }
   }
 }
 
@@ -250,7 +277,8 @@ TYPED_TEST(FclIntegrationTest, BroadphaseWithTheCallbacks) {
   using S = TypeParam;
   std::mt19937 rng(12);
   const auto shape = std::make_shared<Superellipsoid<S>>(S(1), S(0.8), S(0.6), S(0.5), S(1.2));
-  const TriangleMesh<S> cloth_mesh = tessellate(Superellipsoid<S>(S(2), S(2), S(0.05), S(1), S(0.2)), 300);
+  const TriangleMesh<S> cloth_mesh =
+      tessellate(Superellipsoid<S>(S(2), S(2), S(0.05), S(1), S(0.2)), 300);
   const TriangleMesh<S> cloud = randomCloud<S>(rng, 500, S(0.5));
   const auto cloth = makeBVHModel<fcl::OBBRSS<S>>(cloth_mesh);
   const auto points = makeBVHModel<fcl::OBBRSS<S>>(cloud);

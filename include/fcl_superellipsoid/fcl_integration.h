@@ -73,8 +73,7 @@ FSE_EXPORT S distance(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3
 
 /// fcl::collide without a solver argument; contacts in the caller's order.
 template <typename S>
-FSE_EXPORT std::size_t collide(const fcl::CollisionObject<S>* o1,
-                               const fcl::CollisionObject<S>* o2,
+FSE_EXPORT std::size_t collide(const fcl::CollisionObject<S>* o1, const fcl::CollisionObject<S>* o2,
                                const fcl::CollisionRequest<S>& request,
                                fcl::CollisionResult<S>& result);
 template <typename S>
@@ -102,26 +101,25 @@ struct VertexTraversalStats {
 };
 FSE_EXPORT VertexTraversalStats& vertexTraversalStats();
 
-#define FSE_DECLARE_FRONT_END(S)                                                             \
-  extern template FSE_EXPORT S distance(const fcl::CollisionObject<S>*,                      \
-                                        const fcl::CollisionObject<S>*,                      \
-                                        const fcl::DistanceRequest<S>&,                      \
-                                        fcl::DistanceResult<S>&);                            \
-  extern template FSE_EXPORT S distance(                                                     \
-      const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&,                           \
-      const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&,                           \
-      const fcl::DistanceRequest<S>&, fcl::DistanceResult<S>&);                              \
-  extern template FSE_EXPORT std::size_t collide(                                            \
-      const fcl::CollisionObject<S>*, const fcl::CollisionObject<S>*,                        \
-      const fcl::CollisionRequest<S>&, fcl::CollisionResult<S>&);                            \
-  extern template FSE_EXPORT std::size_t collide(                                            \
-      const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&,                           \
-      const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&,                           \
-      const fcl::CollisionRequest<S>&, fcl::CollisionResult<S>&);                            \
-  extern template FSE_EXPORT bool defaultCollisionFunction(fcl::CollisionObject<S>*,         \
-                                                           fcl::CollisionObject<S>*, void*); \
-  extern template FSE_EXPORT bool defaultDistanceFunction(                                   \
-      fcl::CollisionObject<S>*, fcl::CollisionObject<S>*, void*, S&);
+#define FSE_DECLARE_FRONT_END(S)                                                                   \
+  extern template FSE_EXPORT S distance(const fcl::CollisionObject<S>*,                            \
+                                        const fcl::CollisionObject<S>*,                            \
+                                        const fcl::DistanceRequest<S>&, fcl::DistanceResult<S>&);  \
+  extern template FSE_EXPORT S distance(                                                           \
+      const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&,                                 \
+      const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&, const fcl::DistanceRequest<S>&, \
+      fcl::DistanceResult<S>&);                                                                    \
+  extern template FSE_EXPORT std::size_t collide(                                                  \
+      const fcl::CollisionObject<S>*, const fcl::CollisionObject<S>*,                              \
+      const fcl::CollisionRequest<S>&, fcl::CollisionResult<S>&);                                  \
+  extern template FSE_EXPORT std::size_t collide(                                                  \
+      const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&,                                 \
+      const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&,                                 \
+      const fcl::CollisionRequest<S>&, fcl::CollisionResult<S>&);                                  \
+  extern template FSE_EXPORT bool defaultCollisionFunction(fcl::CollisionObject<S>*,               \
+                                                           fcl::CollisionObject<S>*, void*);       \
+  extern template FSE_EXPORT bool defaultDistanceFunction(fcl::CollisionObject<S>*,                \
+                                                          fcl::CollisionObject<S>*, void*, S&);
 FSE_DECLARE_FRONT_END(float)
 FSE_DECLARE_FRONT_END(double)
 #undef FSE_DECLARE_FRONT_END

@@ -44,9 +44,9 @@ int main() {
   // Distance from the shape to the point cloud below it (signed, nearest points in world).
   fcl::DistanceResultd result;
   fse::distance(&o_shape, &o_cloud, fcl::DistanceRequestd(true, true), result);
-  std::printf("distance to the cloud: %.9f at vertex %d, (%.3f, %.3f, %.3f)\n",
-              result.min_distance, result.b2, result.nearest_points[1].x(),
-              result.nearest_points[1].y(), result.nearest_points[1].z());
+  std::printf("distance to the cloud: %.9f at vertex %d, (%.3f, %.3f, %.3f)\n", result.min_distance,
+              result.b2, result.nearest_points[1].x(), result.nearest_points[1].y(),
+              result.nearest_points[1].z());
 
   // The same through FCL's own call with its solver (FCL's order: the mesh comes first).
   fcl::detail::GJKSolver_libccd<double> solver;
