@@ -58,4 +58,17 @@ void registerCollisionTableFloat();
 }  // namespace detail
 }  // namespace fcl_superellipsoid
 
+/// The body of one table TU: instantiates FCL's Matrix<GJKSolver_libccd<S>> and its getter
+/// (the heavy part), and defines register_fn, which writes our entries into that table.
+#define FSE_DEFINE_TABLE(Matrix, getter, member, entry, S, register_fn)                        \
+  namespace fcl {                                                                              \
+  namespace detail {                                                                           \
+  template struct Matrix<GJKSolver_libccd<S>>;                                                 \
+  }                                                                                            \
+  template detail::Matrix<detail::GJKSolver_libccd<S>>& getter<detail::GJKSolver_libccd<S>>(); \
+  }                                                                                            \
+  void fcl_superellipsoid::detail::register_fn() {                                             \
+    writeEntries(fcl::getter<fcl::detail::GJKSolver_libccd<S>>().member, &entry<S>);           \
+  }
+
 #endif  // FCL_SUPERELLIPSOID_SRC_FCL_TABLES_H
