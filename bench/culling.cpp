@@ -7,6 +7,7 @@
 #include "fcl_superellipsoid/fcl_integration.h"
 #include "fcl_superellipsoid/point_distance.h"
 #include "fcl_superellipsoid/tessellation.h"
+#include "workload.h"
 
 namespace fcl_superellipsoid {
 namespace bench {
@@ -14,18 +15,9 @@ namespace bench {
 int runCulling(int vertices) {
   using Clock = std::chrono::steady_clock;
   const auto shape = std::make_shared<Superellipsoidd>(1.0, 0.8, 0.6, 0.5, 1.2);
-  std::mt19937 rng(17);
-  std::uniform_real_distribution<double> u(-1, 1), eta(-M_PI / 2, M_PI / 2), omega(-M_PI, M_PI);
   TriangleMesh<double> cloud;
+  cloud.vertices = makeSceneCloud(*shape, vertices, 0.01, 17);
   const int near = vertices / 100;
-  for (int i = 0; i < vertices; ++i) {
-    if (i < near) {  // within ±0.05 of the surface
-      const Vector3<double> p = shape->surfacePoint(eta(rng), omega(rng));
-      cloud.vertices.push_back(p + 0.05 * u(rng) * shape->normal(p));
-    } else {  // the rest of a 20 × 20 × 20 scene
-      cloud.vertices.emplace_back(10 * u(rng), 10 * u(rng), 10 * u(rng));
-    }
-  }
   const auto model = makeBVHModel<fcl::OBBRSSd>(cloud);
   fcl::CollisionObjectd a(shape), b(model);
 

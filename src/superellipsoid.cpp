@@ -124,6 +124,24 @@ bool Superellipsoid<S>::contains(const Vector3<S>& p_S) const {
 }
 
 template <typename S>
+Vector3<S> Superellipsoid<S>::supportPoint(const Vector3<S>& direction) const {
+  if (!direction.allFinite()) {
+    std::ostringstream msg;
+    msg << "Superellipsoid::supportPoint: direction (" << direction.transpose()
+        << ") is not finite";
+    throw std::invalid_argument(msg.str());
+  }
+  if (direction.isZero(S(0))) return Vector3<S>(radii_[0], S(0), S(0));
+  // ∇h is 0-homogeneous: divide by the largest component so nothing overflows.
+  const Vector3<S> w = direction.cwiseAbs() / direction.cwiseAbs().maxCoeff();
+  Vector3<S> p = detail::NestedNorm<S>::support(*this).evaluate(w, false).gradient;
+  for (int i = 0; i < 3; ++i) {
+    if (direction[i] < S(0)) p[i] = -p[i];  // reflect back out of the first octant
+  }
+  return p;
+}
+
+template <typename S>
 void Superellipsoid<S>::computeLocalAABB() {
   this->aabb_local.min_ = -radii_;
   this->aabb_local.max_ = radii_;

@@ -8,8 +8,9 @@
 // point's coordinate into the query's sign never moves it away), so the search covers the
 // first-octant surface, parametrised by directions d(α, β) of the unit sphere, scaled by the
 // radii and projected radially onto the surface (and, for exponents below 0.1, also by the
-// paper's Eq. 4 angles, which crowd at razor edges). A 33 × 33 grid finds the basins (its
-// local minima, the best 4); each is refined by a pattern search (8 directions, step halving
+// paper's Eq. 4 angles, which crowd at razor edges). A 33 × 33 grid over the octant and a
+// 8× finer one around the query's own direction find the basins (each grid's local minima,
+// the best 4); each is refined by a pattern search (8 directions, step halving
 // down to 1e-9 rad). The distance is stationary at the minimum, so a parameter error δ costs
 // only O(δ²) in distance: far below 1e-15 relative. The nearest point is good to ~1e-9.
 
@@ -46,9 +47,25 @@ class ReferenceDistance {
 
   ReferenceResult query(const std::array<long double, 3>& x) const {
     std::array<long double, 3> y{std::fabs(x[0]), std::fabs(x[1]), std::fabs(x[2])};
-    Sample best = search(y, false);
+    const long double half_pi = std::acos(-1.0L) / 2;
+    Sample best = search(y, false, {0, half_pi, 0, half_pi});
+    // A second, 8× finer grid around the query's own direction: a nearby feature smaller
+    // than the coarse spacing (a pinched tip, the small faces of a box-like cross-section near
+    // a pole) has a basin there that the coarse grid can step over. Around the pole, where α
+    // is degenerate, the window spans every α.
+    const long double rho = std::hypot(y[0] / a_[0], y[1] / a_[1]);
+    const long double alpha0 = std::atan2(y[1] / a_[1], y[0] / a_[0]);
+    const long double beta0 = std::atan2(rho, y[2] / a_[2]);
+    const long double w = 2 * half_pi / 32;
+    const Window zoom = beta0 < w
+                            ? Window{0, half_pi, 0, 2 * w}
+                            : Window{std::max(0.0L, alpha0 - w), std::min(half_pi, alpha0 + w),
+                                     std::max(0.0L, beta0 - w), std::min(half_pi, beta0 + w)};
+    const Sample local = search(y, false, zoom);
+    if (local.d2 < best.d2) best = local;
     // The parametric pass is only needed where the radial grid is coarse: razor edges.
-    const Sample parametric = std::min(e1_, e2_) < 0.1L ? search(y, true) : Sample{INFINITY, 0, 0};
+    const Sample parametric = std::min(e1_, e2_) < 0.1L ? search(y, true, {0, half_pi, 0, half_pi})
+                                                        : Sample{INFINITY, 0, 0};
     parametric_ = false;
     const std::array<long double, 3> p = parametric.d2 < best.d2
                                              ? parametricPoint(parametric.alpha, parametric.beta)
@@ -68,14 +85,18 @@ class ReferenceDistance {
 
   /// Grid + refinement in one parametrisation: radial directions, or the paper's Eq. 4
   /// angles (which crowd at the edges of box-like shapes, where the radial grid is coarse).
-  Sample search(const std::array<long double, 3>& y, bool parametric) const {
+  struct Window {
+    long double alpha_lo, alpha_hi, beta_lo, beta_hi;
+  };
+
+  Sample search(const std::array<long double, 3>& y, bool parametric, const Window& window) const {
     parametric_ = parametric;
-    const long double half_pi = std::acos(-1.0L) / 2;
     const int n = 32;
     std::vector<Sample> grid((n + 1) * (n + 1));
     for (int i = 0; i <= n; ++i) {
       for (int j = 0; j <= n; ++j) {
-        const long double alpha = half_pi * i / n, beta = half_pi * j / n;
+        const long double alpha = window.alpha_lo + (window.alpha_hi - window.alpha_lo) * i / n;
+        const long double beta = window.beta_lo + (window.beta_hi - window.beta_lo) * j / n;
         grid[i * (n + 1) + j] = {dist2(y, alpha, beta), alpha, beta};
       }
     }
@@ -101,7 +122,9 @@ class ReferenceDistance {
     if (starts.size() > 4) starts.resize(4);
     Sample best = starts[0];
     for (const Sample& start : starts) {
-      const Sample s = refine(y, start, half_pi / n);
+      const Sample s =
+          refine(y, start,
+                 std::max(window.alpha_hi - window.alpha_lo, window.beta_hi - window.beta_lo) / n);
       if (s.d2 < best.d2) best = s;
     }
     return best;

@@ -216,6 +216,60 @@ TYPED_TEST(SuperellipsoidTest, VolumeAndInertiaMatchMonteCarloIntegration) {
   }
 }
 
+TYPED_TEST(SuperellipsoidTest, SupportPointIsTheFarthestSurfacePointAlongTheDirection) {
+  using S = TypeParam;
+  std::mt19937 rng(5);
+  std::normal_distribution<double> gauss;
+  test::AngleSampler angles(6);
+  for (const auto& a : test::radiiSet()) {
+    for (double e1 : test::exponentGrid()) {
+      for (double e2 : test::exponentGrid()) {
+        const Superellipsoid<S> shape{S(a[0]), S(a[1]), S(a[2]), S(e1), S(e2)};
+        SCOPED_TRACE(test::describe(shape));
+        std::vector<Vector3<S>> surface;
+        for (int k = 0; k < 200; ++k) {
+          const auto [eta, omega] = angles();
+          surface.push_back(shape.surfacePoint(S(eta), S(omega)));
+        }
+        for (int k = 0; k < 20; ++k) {
+          Vector3<S> d(S(gauss(rng)), S(gauss(rng)), S(gauss(rng)));
+          if (k == 0) d = Vector3<S>(S(0), S(0), S(-3));  // on an axis
+          if (k == 1) d = Vector3<S>(S(1), S(-1), S(0));  // in a coordinate plane
+          d *= S(k % 3 == 0 ? 1e-6 : 1e6);                // any length
+          const Vector3<S> s = shape.supportPoint(d);
+          ASSERT_TRUE(s.allFinite());
+          // On the surface (independent long-double gauge) ...
+          EXPECT_NEAR(double(test::referenceGauge(shape, s)), 1.0, 8 * evalTolerance<S>());
+          // ... and no sampled surface point reaches farther along d.
+          const Vector3<S> u = d.normalized();
+          for (const Vector3<S>& p : surface) {
+            ASSERT_LE(u.dot(p), u.dot(s) + 8 * evalTolerance<S>() * shape.size());
+          }
+          // Where the surface is smooth at s, its normal there is the direction.
+          if (std::min(e1, e2) >= 0.3 && std::max(e1, e2) <= 1.7 && !test::isElongated(a)) {
+            EXPECT_GT(shape.normal(s).dot(u), S(1) - S(100) * evalTolerance<S>());
+          }
+        }
+      }
+    }
+  }
+}
+
+TYPED_TEST(SuperellipsoidTest, SupportPointOfZeroAndNonFiniteDirections) {
+  using S = TypeParam;
+  const Superellipsoid<S> shape{S(2), S(1), S(0.5), S(0.4), S(1.5)};
+  EXPECT_EQ(shape.supportPoint(Vector3<S>::Zero()), Vector3<S>(S(2), S(0), S(0)));
+  const S nan = std::numeric_limits<S>::quiet_NaN();
+  try {
+    shape.supportPoint(Vector3<S>(S(1), nan, S(0)));
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("nan"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(shape.supportPoint(Vector3<S>(std::numeric_limits<S>::infinity(), S(0), S(0))),
+               std::invalid_argument);
+}
+
 TYPED_TEST(SuperellipsoidTest, InvalidParametersThrowNamingTheValue) {
   using S = TypeParam;
   const S nan = std::numeric_limits<S>::quiet_NaN();

@@ -74,6 +74,12 @@ class FSE_EXPORT Superellipsoid : public fcl::ShapeBase<S> {
   Vector3<S> surfacePoint(S eta, S omega) const;
   /// True if p_S is inside or on the surface (G ≤ 1).
   bool contains(const Vector3<S>& p_S) const;
+  /// The support point: the surface point that maximises direction·x, in closed form as the
+  /// gradient of the support function h (MATH.md). Unique for every non-zero direction
+  /// (the shape is strictly convex for ε < 2); any length of direction. For the zero
+  /// direction every surface point qualifies: returns (a1, 0, 0).
+  /// @throws std::invalid_argument if a component of direction is NaN or infinite.
+  Vector3<S> supportPoint(const Vector3<S>& direction) const;
 
   /// The options FCL queries against this shape use (fcl_integration.h: mesh vertices,
   /// spheres). Default: the Exact method with its default tolerance.
