@@ -115,20 +115,33 @@ def plot_mesh_resolution(rows, sides, path):
 
 
 def plot_scaling(csv_path, path):
+    """Left: the scene cloud's paths; right: single against batched queries, near and far."""
     series = defaultdict(list)
     with open(csv_path, newline="") as f:
         for r in csv.DictReader(f):
-            series[r["path"]].append((int(r["vertices"]), float(r["ns_per_vertex"])))
-    fig, ax = plt.subplots(figsize=(6.5, 4.5))
-    for name, pts in series.items():
-        pts.sort()
-        ax.plot([p[0] for p in pts], [p[1] for p in pts], marker="o", label=name)
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel("vertices in the point cloud (1 % near the shape)")
-    ax.set_ylabel("time per vertex [ns]")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend()
+            if r["cloud"] == "scene":
+                key = ("scene", f"{r['path']}, {r['threads']} thread(s)")
+            elif r["scalar"] == "double":
+                key = ("batch", f"{r['cloud']}: {r['path']}, {r['threads']} thread(s)")
+            else:
+                continue
+            series[key].append((int(r["vertices"]), float(r["ns_per_vertex"])))
+    fig, axes = plt.subplots(1, 2, figsize=(13, 4.8))
+    for ax, panel, title in ((axes[0], "scene", "scene cloud (1 % near the surface), double"),
+                             (axes[1], "batch", "all near / all far, double")):
+        for (p, name), pts in sorted(series.items()):
+            if p != panel:
+                continue
+            pts.sort()
+            ax.plot([q[0] for q in pts], [q[1] for q in pts], marker="o", label=name,
+                    linestyle="--" if "far" in name else "-")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("vertices")
+        ax.set_ylabel("time per vertex [ns]")
+        ax.set_title(title)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=6)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
 

@@ -5,7 +5,10 @@
 #include <cstdio>
 #include <fstream>
 #include <functional>
+#include <random>
+#include <thread>
 
+#include "fcl_superellipsoid/batch_distance.h"
 #include "fcl_superellipsoid/fcl_integration.h"
 #include "fcl_superellipsoid/point_distance.h"
 #include "fcl_superellipsoid/tessellation.h"
@@ -33,71 +36,162 @@ double medianMs(int repetitions, const std::function<double()>& f, double& value
   return ms[ms.size() / 2];
 }
 
+void printRow(const ScalingRow& r) {
+  std::printf("%-6s %-7s %9d  %-24s %7d %9.1f %12.3f %11.1f %14.6g\n", r.cloud.c_str(),
+              r.scalar.c_str(), r.vertices, r.path.c_str(), r.threads, r.setup_ms, r.total_ms,
+              r.ns_per_vertex, r.result);
+}
+
+/// The scene: single queries, the FCL front end, and the batched within-margin query.
+void sceneRows(const std::shared_ptr<Superellipsoidd>& shape, int n, int repetitions,
+               std::vector<ScalingRow>& rows) {
+  TriangleMesh<double> cloud;
+  cloud.vertices = makeSceneCloud(*shape, n, 0.01, 99);
+  auto add = [&](const char* path, int threads, double setup_ms, double ms, double value) {
+    rows.push_back({"scene", "double", n, path, threads, setup_ms, ms, 1e6 * ms / n, value});
+    printRow(rows.back());
+  };
+  double value = 0;
+  double ms = medianMs(
+      repetitions,
+      [&] {
+        double best = std::numeric_limits<double>::infinity();
+        for (const Vector3<double>& v : cloud.vertices)
+          best = std::min(best, pointDistance(*shape, v).distance);
+        return best;
+      },
+      value);
+  add("single queries (min)", 1, 0, ms, value);
+
+  const Clock::time_point start = Clock::now();
+  const auto model = makeBVHModel<fcl::OBBRSSd>(cloud);
+  const double build_ms = msSince(start);
+  const fcl::CollisionObjectd a(shape), b(model);
+  ms = medianMs(
+      repetitions,
+      [&] {
+        fcl::DistanceResultd result;
+        return fcl_superellipsoid::distance(&a, &b, fcl::DistanceRequestd(true, true), result);
+      },
+      value);
+  add("front end distance", 1, build_ms, ms, value);
+  ms = medianMs(
+      repetitions,
+      [&] {
+        fcl::CollisionResultd result;
+        return double(fcl_superellipsoid::collide(&a, &b, fcl::CollisionRequestd(n, true), result));
+      },
+      value);
+  add("front end collide", 1, build_ms, ms, value);
+
+  const Eigen::Map<const Matrix3X<double>> p_WV(cloud.vertices[0].data(), 3, n);
+  for (int threads : {1, 0}) {
+    BatchOptions<double> options;
+    options.threads = threads;
+    ms = medianMs(
+        repetitions,
+        [&] {
+          return double(
+              verticesWithinMargin(*shape, fcl::Transform3d::Identity(), p_WV, 0.0, options)
+                  .size());
+        },
+        value);
+    add("batch within margin 0", threads ? 1 : int(std::thread::hardware_concurrency()), 0, ms,
+        value);
+  }
+}
+
+/// All-near or all-far clouds: single queries against the batched paths.
+template <typename S>
+void batchRows(const Superellipsoid<S>& shape, const char* kind, int n, int repetitions,
+               std::vector<ScalingRow>& rows) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1), eta(-M_PI / 2, M_PI / 2), omega(-M_PI, M_PI);
+  const bool near = std::string(kind) == "near";
+  Matrix3X<S> p_WV(3, n);
+  for (int i = 0; i < n; ++i) {
+    const Vector3<S> p = shape.surfacePoint(S(eta(rng)), S(omega(rng)));
+    const S t = near ? S(0.05 * u(rng)) * shape.size() : S(10 + 5 * u(rng)) * shape.size();
+    p_WV.col(i) = p + t * shape.normal(p);
+  }
+  const char* scalar = std::is_same<S, float>::value ? "float" : "double";
+  const int all = int(std::thread::hardware_concurrency());
+  auto add = [&](const char* path, int threads, double ms, double value) {
+    rows.push_back({kind, scalar, n, path, threads, 0, ms, 1e6 * ms / n, value});
+    printRow(rows.back());
+  };
+  const fcl::Transform3<S> X_WS = fcl::Transform3<S>::Identity();
+  double value = 0;
+  double ms = medianMs(
+      repetitions,
+      [&] {
+        double sum = 0;
+        for (int i = 0; i < n; ++i)
+          sum += double(pointDistance(shape, Vector3<S>(p_WV.col(i))).distance);
+        return sum;
+      },
+      value);
+  add("single queries (sum)", 1, ms, value);
+  BatchDistanceResult<S> batch;
+  for (int threads : {1, 0}) {
+    BatchOptions<S> options;
+    options.threads = threads;
+    ms = medianMs(
+        repetitions,
+        [&] {
+          batchDistance(shape, X_WS, p_WV, batch, options);
+          return double(batch.distance.template cast<double>().sum());
+        },
+        value);
+    add("batch distance (sum)", threads ? 1 : all, ms, value);
+  }
+  for (int threads : {1, 0}) {
+    BatchOptions<S> options;
+    options.threads = threads;
+    ms = medianMs(
+        repetitions,
+        [&] {
+          return double(
+              verticesWithinMargin(shape, X_WS, p_WV, S(0.05) * shape.size(), options).size());
+        },
+        value);
+    add("batch within 0.05 (count)", threads ? 1 : all, ms, value);
+  }
+}
+
 }  // namespace
 
 std::vector<ScalingRow> runScaling(const std::vector<int>& sizes, int repetitions,
                                    const std::string& csv_path) {
   const auto shape = std::make_shared<Superellipsoidd>(3.5, 3.0, 2.0, 0.4, 0.3);  // cloth scene
+  const Superellipsoidf shape_f(3.5f, 3.0f, 2.0f, 0.4f, 0.3f);
   std::vector<ScalingRow> rows;
   std::printf(
-      "\nScaling: point clouds around the cloth-scene shape (3.5, 3, 2; 0.4, 0.3), 1 %% of "
-      "the vertices within\n+-0.05 x size of the surface; Exact solver; median of %d; one "
-      "thread (the batched, threaded path is issue #6)\n",
-      repetitions);
-  std::printf("%10s  %-22s %10s %12s %12s %14s\n", "vertices", "path", "BVH [ms]", "query [ms]",
-              "ns/vertex", "result");
-  for (const int n : sizes) {
-    TriangleMesh<double> cloud;
-    cloud.vertices = makeSceneCloud(*shape, n, 0.01, 99);
-    double value = 0;
-    const double single_ms = medianMs(
-        repetitions,
-        [&] {
-          double best = std::numeric_limits<double>::infinity();
-          for (const Vector3<double>& v : cloud.vertices)
-            best = std::min(best, pointDistance(*shape, v).distance);
-          return best;
-        },
-        value);
-    rows.push_back({n, "single queries", 0, single_ms, 1e6 * single_ms / n, value});
-
-    const Clock::time_point start = Clock::now();
-    const auto model = makeBVHModel<fcl::OBBRSSd>(cloud);
-    const double build_ms = msSince(start);
-    const fcl::CollisionObjectd a(shape), b(model);
-    const double distance_ms = medianMs(
-        repetitions,
-        [&] {
-          fcl::DistanceResultd result;
-          return fcl_superellipsoid::distance(&a, &b, fcl::DistanceRequestd(true, true), result);
-        },
-        value);
-    rows.push_back({n, "front end distance", build_ms, distance_ms, 1e6 * distance_ms / n, value});
-    const double collide_ms = medianMs(
-        repetitions,
-        [&] {
-          fcl::CollisionResultd result;
-          return double(
-              fcl_superellipsoid::collide(&a, &b, fcl::CollisionRequestd(n, true), result));
-        },
-        value);
-    rows.push_back({n, "front end collide", build_ms, collide_ms, 1e6 * collide_ms / n, value});
-    for (std::size_t r = rows.size() - 3; r < rows.size(); ++r) {
-      std::printf("%10d  %-22s %10.1f %12.3f %12.1f %14.6g\n", rows[r].vertices,
-                  rows[r].path.c_str(), rows[r].setup_ms, rows[r].total_ms, rows[r].ns_per_vertex,
-                  rows[r].result);
+      "\nScaling: point clouds around the cloth-scene shape (3.5, 3, 2; 0.4, 0.3), Exact "
+      "solver, median of %d.\nscene: 1 %% of the vertices within +-0.05 x size of the "
+      "surface, the rest in a cube of side 20 x size;\nnear: all within +-0.05 x size; "
+      "far: all 5 to 15 x size away. threads 0 in the options = all %u.\n",
+      repetitions, std::thread::hardware_concurrency());
+  std::printf("%-6s %-7s %9s  %-24s %7s %9s %12s %11s %14s\n", "cloud", "scalar", "vertices",
+              "path", "threads", "BVH [ms]", "query [ms]", "ns/vertex", "result");
+  for (const int n : sizes) sceneRows(shape, n, repetitions, rows);
+  for (const char* kind : {"near", "far"}) {
+    for (const int n : sizes) {
+      batchRows(*shape, kind, n, repetitions, rows);
+      batchRows(shape_f, kind, n, repetitions, rows);
     }
   }
   std::printf(
-      "result: the minimum signed distance (single queries, front end distance) or the "
-      "number of\npenetrating vertices (collide). The BVH is built once per cloud, as a "
-      "scene would.\n");
+      "result: the minimum or the sum of the signed distances, or the number of vertices "
+      "found; paths on\nthe same cloud agree. The BVH is built once per cloud, as a scene "
+      "would.\n");
   if (!csv_path.empty()) {
     std::ofstream csv(csv_path);
-    csv << "vertices,path,setup_ms,total_ms,ns_per_vertex,result\n";
+    csv << "cloud,scalar,vertices,path,threads,setup_ms,total_ms,ns_per_vertex,result\n";
     for (const ScalingRow& r : rows) {
-      csv << r.vertices << ",\"" << r.path << "\"," << r.setup_ms << ',' << r.total_ms << ','
-          << r.ns_per_vertex << ',' << r.result << '\n';
+      csv << r.cloud << ',' << r.scalar << ',' << r.vertices << ",\"" << r.path << "\","
+          << r.threads << ',' << r.setup_ms << ',' << r.total_ms << ',' << r.ns_per_vertex << ','
+          << r.result << '\n';
     }
   }
   return rows;

@@ -8,18 +8,24 @@ namespace fcl_superellipsoid {
 namespace bench {
 
 struct ScalingRow {
+  std::string cloud;   // "scene" (1 % near the surface), "near" (all), "far" (all)
+  std::string scalar;  // "double" or "float"
   int vertices;
-  std::string path;  // "single queries", "front end distance", "front end collide"
-  double setup_ms;   // building the point cloud's BVH (0 for single queries)
-  double total_ms;   // the query itself (median of repetitions)
+  std::string path;  // "single queries", "front end distance", "batch distance", ...
+  int threads;
+  double setup_ms;  // building the point cloud's BVH (front end only)
+  double total_ms;  // the query itself (median of repetitions)
   double ns_per_vertex;
-  double result;  // min distance or contact count: the paths must agree
+  double result;  // min distance or vertex count: paths on one cloud must agree
 };
 
-/// Time per vertex and in total for point clouds of each size (1 % within ±0.05 × size of
-/// the surface, as in a scene; makeSceneCloud): every vertex through the Exact solver one at
-/// a time, and the FCL front end (BVH culling) for distance and collision. Prints a table;
-/// writes CSV to csv_path unless empty.
+/// Time per vertex and in total for point clouds of each size, around the cloth-scene shape:
+///  - a scene cloud (1 % within ±0.05 × size of the surface; makeSceneCloud), double: every
+///    vertex through the Exact solver one at a time, the FCL front end (BVH culling) for
+///    distance and collision, and the batched within-margin query;
+///  - all-near and all-far clouds, float and double: single queries against the batched
+///    per-vertex and within-margin queries, on one thread and on all.
+/// Prints tables; writes CSV to csv_path unless empty.
 std::vector<ScalingRow> runScaling(const std::vector<int>& sizes, int repetitions,
                                    const std::string& csv_path);
 

@@ -1,0 +1,88 @@
+#ifndef FCL_SUPERELLIPSOID_BATCH_DISTANCE_H
+#define FCL_SUPERELLIPSOID_BATCH_DISTANCE_H
+
+/// @file
+/// Many vertices against one superellipsoid: what a cloth or a rigid mesh asks every step.
+///
+/// Vertices come as a 3×N matrix, one vertex per column, in the world frame W. Eigen stores
+/// it column-major, so an N×3 row-major array (x0 y0 z0 x1 y1 z1 ...) maps without a copy:
+///
+///     Eigen::Map<const Eigen::Matrix3Xd> p_WV(data, 3, n);
+///
+/// Every answer is the scalar pointDistance() of that vertex with the same options, so the
+/// results agree with single queries vertex for vertex. Work is spread over TBB's threads
+/// above a size where threads pay; results do not depend on the thread count.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "fcl_superellipsoid/distance_options.h"
+#include "fcl_superellipsoid/export.h"
+#include "fcl_superellipsoid/point_distance.h"
+#include "fcl_superellipsoid/superellipsoid.h"
+
+namespace fcl_superellipsoid {
+
+template <typename S>
+using Matrix3X = Eigen::Matrix<S, 3, Eigen::Dynamic>;
+
+template <typename S>
+struct BatchOptions {
+  DistanceOptions<S> distance;  ///< method, tolerance, iteration cap (default: Exact)
+  /// 0: as many threads as TBB offers; 1: the calling thread only; n: at most n.
+  int threads = 0;
+  /// No threads below this many vertices (they cost more than they save there).
+  int min_parallel_vertices = 4096;
+};
+
+/// Per-vertex answers, world frame.
+template <typename S>
+struct BatchDistanceResult {
+  Eigen::Matrix<S, Eigen::Dynamic, 1> distance;  ///< signed, < 0 inside
+  Matrix3X<S> nearest_point;                     ///< on the surface
+  Matrix3X<S> normal;                            ///< unit outward normal there
+};
+
+/// A vertex within the margin.
+template <typename S>
+struct VertexContact {
+  Eigen::Index index;        ///< column of the vertex in p_WV
+  S distance;                ///< signed, ≤ margin
+  Vector3<S> nearest_point;  ///< world frame
+  Vector3<S> normal;         ///< world frame, outward
+};
+
+/// Signed distance, nearest point and normal of every vertex.
+/// @throws std::invalid_argument naming the first non-finite vertex (index and value), or
+///         invalid options (see validateOptions); result is then unchanged.
+template <typename S>
+FSE_EXPORT void batchDistance(const Superellipsoid<S>& shape,
+                              const detail::NonDeduced<fcl::Transform3<S>>& X_WS,
+                              const detail::NonDeduced<Eigen::Ref<const Matrix3X<S>>>& p_WV,
+                              BatchDistanceResult<S>& result,
+                              const detail::NonDeduced<BatchOptions<S>>& options = {});
+
+/// Only the vertices whose signed distance is ≤ margin, in increasing index order. Vertices
+/// whose distance to the shape's bounding box already exceeds the margin are dropped after a
+/// few arithmetic operations, without a solver call.
+/// @throws std::invalid_argument for a non-finite margin or vertex (naming it) or bad options.
+template <typename S>
+FSE_EXPORT std::vector<VertexContact<S>> verticesWithinMargin(
+    const Superellipsoid<S>& shape, const detail::NonDeduced<fcl::Transform3<S>>& X_WS,
+    const detail::NonDeduced<Eigen::Ref<const Matrix3X<S>>>& p_WV, detail::NonDeduced<S> margin,
+    const detail::NonDeduced<BatchOptions<S>>& options = {});
+
+#define FSE_DECLARE_BATCH(S)                                                                     \
+  extern template FSE_EXPORT void batchDistance(                                                 \
+      const Superellipsoid<S>&, const fcl::Transform3<S>&, const Eigen::Ref<const Matrix3X<S>>&, \
+      BatchDistanceResult<S>&, const BatchOptions<S>&);                                          \
+  extern template FSE_EXPORT std::vector<VertexContact<S>> verticesWithinMargin(                 \
+      const Superellipsoid<S>&, const fcl::Transform3<S>&, const Eigen::Ref<const Matrix3X<S>>&, \
+      S, const BatchOptions<S>&);
+FSE_DECLARE_BATCH(float)
+FSE_DECLARE_BATCH(double)
+#undef FSE_DECLARE_BATCH
+
+}  // namespace fcl_superellipsoid
+
+#endif  // FCL_SUPERELLIPSOID_BATCH_DISTANCE_H

@@ -1,0 +1,193 @@
+// Batched queries (batch_distance.h): the same answers as single queries, vertex for vertex,
+// exact compaction, independence of the thread count, bad input.
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "fcl_superellipsoid/batch_distance.h"
+#include "fcl_superellipsoid/point_distance.h"
+#include "test_helpers.h"
+
+namespace fcl_superellipsoid {
+namespace {
+
+template <typename S>
+class BatchDistanceTest : public ::testing::Test {};
+TYPED_TEST_SUITE(BatchDistanceTest, test::Scalars);
+
+template <typename S>
+fcl::Transform3<S> randomPose(std::mt19937& rng, S scale) {
+  std::normal_distribution<double> g;
+  const Eigen::Quaternion<S> q(S(g(rng)), S(g(rng)), S(g(rng)), S(g(rng)));
+  fcl::Transform3<S> X = fcl::Transform3<S>::Identity();
+  X.linear() = q.normalized().toRotationMatrix();
+  X.translation() = scale * Vector3<S>(S(g(rng)), S(g(rng)), S(g(rng)));
+  return X;
+}
+
+/// The hard cases of the point solver (centre, near-centre, axes, coordinate planes, on the
+/// surface, ±1e-9 × size, far) and a random cloud around the shape, in the shape's frame.
+template <typename S>
+Matrix3X<S> hardVertices(const Superellipsoid<S>& shape, std::mt19937& rng) {
+  std::vector<Vector3<S>> v;
+  const S size = shape.size();
+  const Vector3<S> a = shape.radii();
+  v.push_back(Vector3<S>::Zero());
+  v.push_back(Vector3<S>::Constant(S(1e-12) * size));
+  for (int k = 0; k < 3; ++k) {
+    for (S f : {S(0.3), S(1), S(2)}) {
+      Vector3<S> p = Vector3<S>::Zero();
+      p[k] = f * a[k];
+      v.push_back(p);
+      v.push_back(-p);
+      Vector3<S> q = S(0.5) * a.cwiseProduct(Vector3<S>(S(0.7), S(-0.4), S(0.6)));
+      q[k] = 0;  // in a coordinate plane
+      v.push_back(f * q);
+    }
+  }
+  test::AngleSampler angles(4);
+  for (int k = 0; k < 40; ++k) {
+    const auto [eta, omega] = angles();
+    const Vector3<S> p = shape.surfacePoint(S(eta), S(omega));
+    const Vector3<S> n = shape.normal(p);
+    for (S t : {S(0), S(1e-9), S(-1e-9), S(0.05), S(-0.02), S(1e6)}) v.push_back(p + t * size * n);
+  }
+  std::uniform_real_distribution<double> u(-2, 2);
+  for (int k = 0; k < 300; ++k) {
+    v.push_back(a.cwiseProduct(Vector3<S>(S(u(rng)), S(u(rng)), S(u(rng)))));
+  }
+  Matrix3X<S> out(3, v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) out.col(Eigen::Index(i)) = v[i];
+  return out;
+}
+
+TYPED_TEST(BatchDistanceTest, AgreesWithSingleQueriesVertexForVertex) {
+  using S = TypeParam;
+  std::mt19937 rng(1);
+  for (const auto& a : test::radiiSet()) {
+    for (double e1 : {0.02, 0.1, 1.0, 1.9, 1.98}) {
+      for (double e2 : {0.1, 1.0, 1.9}) {
+        const Superellipsoid<S> shape{S(a[0]), S(a[1]), S(a[2]), S(e1), S(e2)};
+        SCOPED_TRACE(test::describe(shape));
+        const fcl::Transform3<S> X_WS = randomPose<S>(rng, shape.size());
+        const Matrix3X<S> p_WV = X_WS * hardVertices(shape, rng);
+        BatchDistanceResult<S> batch;
+        BatchOptions<S> options;
+        options.min_parallel_vertices = 1;  // exercise the threaded path
+        batchDistance(shape, X_WS, p_WV, batch, options);
+        ASSERT_EQ(batch.distance.size(), p_WV.cols());
+        for (Eigen::Index i = 0; i < p_WV.cols(); ++i) {
+          const auto r = pointDistance(shape, X_WS, Vector3<S>(p_WV.col(i)));
+          ASSERT_EQ(batch.distance[i], r.distance) << "vertex " << i;
+          ASSERT_EQ(batch.nearest_point.col(i), r.nearest_point) << "vertex " << i;
+          ASSERT_EQ(batch.normal.col(i), r.normal) << "vertex " << i;
+        }
+      }
+    }
+  }
+}
+
+TYPED_TEST(BatchDistanceTest, CompactsExactlyTheVerticesWithinTheMargin) {
+  using S = TypeParam;
+  std::mt19937 rng(2);
+  const S tol = test::evalTolerance<S>() * 100;
+  for (const auto& a : test::radiiSet()) {
+    for (double e1 : {0.1, 1.0, 1.9}) {
+      const Superellipsoid<S> shape{S(a[0]), S(a[1]), S(a[2]), S(e1), S(0.6)};
+      SCOPED_TRACE(test::describe(shape));
+      const fcl::Transform3<S> X_WS = randomPose<S>(rng, shape.size());
+      const Matrix3X<S> p_WV = X_WS * hardVertices(shape, rng);
+      for (S m : {S(-0.3), S(-1e-3), S(0), S(0.02), S(0.5), S(3)}) {
+        const S margin = m * shape.size();
+        const std::vector<VertexContact<S>> contacts =
+            verticesWithinMargin(shape, X_WS, p_WV, margin);
+        std::size_t next = 0;
+        for (Eigen::Index i = 0; i < p_WV.cols(); ++i) {
+          const auto r = pointDistance(shape, X_WS, Vector3<S>(p_WV.col(i)));
+          const bool listed = next < contacts.size() && contacts[next].index == i;
+          // Away from the boundary of the margin, membership is exact.
+          if (std::abs(r.distance - margin) > tol * shape.size()) {
+            ASSERT_EQ(listed, r.distance <= margin)
+                << "vertex " << i << " distance " << r.distance << " margin " << margin;
+          }
+          if (listed) {
+            const VertexContact<S>& c = contacts[next++];
+            EXPECT_LE(c.distance, margin);
+            EXPECT_NEAR(c.distance, r.distance, tol * shape.size());
+            EXPECT_LE((c.nearest_point - r.nearest_point).norm(), tol * shape.size());
+            EXPECT_LE((c.normal - r.normal).norm(), tol);
+          }
+        }
+        EXPECT_EQ(next, contacts.size()) << "contacts out of index order or duplicated";
+      }
+    }
+  }
+}
+
+TYPED_TEST(BatchDistanceTest, ResultsDoNotDependOnTheThreadCount) {
+  using S = TypeParam;
+  std::mt19937 rng(3);
+  const Superellipsoid<S> shape{S(3.5), S(3), S(2), S(0.4), S(0.3)};
+  const fcl::Transform3<S> X_WS = randomPose<S>(rng, S(1));
+  std::uniform_real_distribution<double> u(-4, 4);
+  Matrix3X<S> p_WV(3, 20000);
+  for (Eigen::Index i = 0; i < p_WV.cols(); ++i) {
+    p_WV.col(i) = X_WS * Vector3<S>(S(u(rng)), S(u(rng)), S(u(rng)));
+  }
+  std::vector<std::vector<VertexContact<S>>> results;
+  std::vector<BatchDistanceResult<S>> batches;
+  for (int threads : {1, 2, 0}) {
+    BatchOptions<S> options;
+    options.threads = threads;
+    options.min_parallel_vertices = 1;
+    results.push_back(verticesWithinMargin(shape, X_WS, p_WV, S(0.1), options));
+    batches.emplace_back();
+    batchDistance(shape, X_WS, p_WV, batches.back(), options);
+  }
+  ASSERT_GT(results[0].size(), 100u);
+  for (std::size_t k = 1; k < results.size(); ++k) {
+    ASSERT_EQ(results[k].size(), results[0].size());
+    for (std::size_t i = 0; i < results[0].size(); ++i) {
+      EXPECT_EQ(results[k][i].index, results[0][i].index);
+      EXPECT_EQ(results[k][i].distance, results[0][i].distance);
+      EXPECT_EQ(results[k][i].nearest_point, results[0][i].nearest_point);
+    }
+    EXPECT_EQ(batches[k].distance, batches[0].distance);
+    EXPECT_EQ(batches[k].nearest_point, batches[0].nearest_point);
+  }
+}
+
+TYPED_TEST(BatchDistanceTest, EmptyInputAndBadInput) {
+  using S = TypeParam;
+  const Superellipsoid<S> shape{S(1), S(2), S(3), S(0.5), S(1.5)};
+  const fcl::Transform3<S> X_WS = fcl::Transform3<S>::Identity();
+  const Matrix3X<S> none(3, 0);
+  BatchDistanceResult<S> batch;
+  batchDistance(shape, X_WS, none, batch);
+  EXPECT_EQ(batch.distance.size(), 0);
+  EXPECT_TRUE(verticesWithinMargin(shape, X_WS, none, S(1)).empty());
+
+  Matrix3X<S> bad = Matrix3X<S>::Ones(3, 5);
+  bad(1, 3) = std::numeric_limits<S>::quiet_NaN();
+  for (int form = 0; form < 2; ++form) {
+    try {
+      if (form == 0) batchDistance(shape, X_WS, bad, batch);
+      if (form == 1) verticesWithinMargin(shape, X_WS, bad, S(1));
+      FAIL() << "expected std::invalid_argument";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("vertex 3"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("nan"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_THROW(verticesWithinMargin(shape, X_WS, Matrix3X<S>::Ones(3, 2),
+                                    std::numeric_limits<S>::infinity()),
+               std::invalid_argument);
+  BatchOptions<S> options;
+  options.distance.tolerance = S(-1);
+  EXPECT_THROW(batchDistance(shape, X_WS, Matrix3X<S>::Ones(3, 2), batch, options),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace fcl_superellipsoid
