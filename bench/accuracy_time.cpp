@@ -53,7 +53,8 @@ Stats scoreAnswers(const std::vector<Answer>& answers, const PointSet& set, bool
   Stats s;
   s.truth_points = set.truthCount();
   double sum2 = 0;
-  int scored = 0, with_test = 0, converged = 0, nonconv = 0;
+  int scored = 0, with_test = 0, converged = 0, nonconv = 0, estimates = 0;
+  double estimate_sum = 0;
   for (int i = 0; i < set.truthCount(); ++i) {
     const Answer& a = answers[i];
     if (!std::isfinite(a.distance) || !a.nearest.allFinite()) {
@@ -70,6 +71,10 @@ Stats scoreAnswers(const std::vector<Answer>& answers, const PointSet& set, bool
     s.max_err = std::max(s.max_err, err);
     s.avg_point_err += point_err;
     s.max_point_err = std::max(s.max_point_err, point_err);
+    if (std::isfinite(a.estimate)) {
+      estimate_sum += a.estimate;
+      ++estimates;
+    }
     if (a.converged >= 0) {
       ++with_test;
       if (a.converged == 1) {
@@ -87,6 +92,7 @@ Stats scoreAnswers(const std::vector<Answer>& answers, const PointSet& set, bool
   }
   if (with_test > 0) s.converged_pct = 100.0 * converged / with_test;
   if (nonconv > 0) s.nonconv_err /= nonconv;
+  if (estimates > 0) s.avg_estimate = estimate_sum / estimates;
   return s;
 }
 

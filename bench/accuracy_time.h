@@ -24,6 +24,7 @@ struct Stats {
   double max_point_err = 0;
   double converged_pct = NAN;  // NaN for methods without a convergence test
   double nonconv_err = 0;      // average error of the non-converged (0 if none)
+  double avg_estimate = NAN;   // average of the method's own error estimate (paper Eq. 7)
 };
 
 /// Scores answers[i] against set's truth, i < set.truthCount().

@@ -23,7 +23,7 @@ class SolverMethod final : public Method {
 
   Answer query(const Vector3<double>& x) const override {
     const PointDistanceResult<double> r = pointDistance(shape_, x, options_);
-    return {r.distance, r.nearest_point, r.converged ? 1 : 0};
+    return {r.distance, r.nearest_point, r.converged ? 1 : 0, r.error};
   }
 
  private:

@@ -5,6 +5,7 @@
 // paper's, and what an FCL or Bullet user would otherwise use. Each method is built once per
 // shape (meshes are tessellated then) and queried with points in the shape's frame.
 
+#include <cmath>
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -19,6 +20,7 @@ struct Answer {
   double distance;          // signed (negative inside) if the method signs, else ≥ 0
   Vector3<double> nearest;  // a nearest surface point, shape frame
   int converged;            // 1 or 0; −1 where the method has no convergence test
+  double estimate = NAN;    // the method's own error estimate (the paper's Eq. 7), if any
 };
 
 // Family names, as they appear in tables, CSV and JSON.

@@ -91,6 +91,7 @@ const std::vector<Field>& fields() {
       {"max_point_err", [](const Row& r) { return json(r.stats.max_point_err); }},
       {"converged_pct", [](const Row& r) { return json(r.stats.converged_pct); }},
       {"nonconv_err", [](const Row& r) { return json(r.stats.nonconv_err); }},
+      {"avg_error_estimate", [](const Row& r) { return json(r.stats.avg_estimate); }},
       {"us_per_query", [](const Row& r) { return json(r.us_per_query); }},
       {"speedup_vs_mesh272", [](const Row& r) { return json(r.speedup_vs_mesh272); }},
       {"memory_bytes", [](const Row& r) { return json(r.memory_bytes); }},

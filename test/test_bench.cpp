@@ -21,10 +21,10 @@ TEST(BenchScoring, AveragesSigmaMaximumAndConvergenceOnAKnownCase) {
   for (int i = 0; i < 4; ++i) set.true_nearest.push_back(Vector3<double>(i, 0, 0));
   const Vector3<double> nan = Vector3<double>::Constant(NAN);
   const std::vector<Answer> answers = {
-      {1.1, Vector3<double>(0, 0.3, 0), 1},   // error 0.1, point error 0.3
-      {2.3, Vector3<double>(1, 0, 0), 0},     // error 0.3, not converged
-      {-1.0, Vector3<double>(2, 0, 0.1), 1},  // exact, point error 0.1
-      {NAN, nan, 1},                          // a failure: counted, not scored
+      {1.1, Vector3<double>(0, 0.3, 0), 1, 0.01},   // error 0.1, point error 0.3
+      {2.3, Vector3<double>(1, 0, 0), 0, 0.02},     // error 0.3, not converged
+      {-1.0, Vector3<double>(2, 0, 0.1), 1, 0.03},  // exact, point error 0.1
+      {NAN, nan, 1, 5.0},                           // a failure: counted, not scored
   };
   const Stats s = scoreAnswers(answers, set, true);
   EXPECT_EQ(s.truth_points, 4);
@@ -37,6 +37,7 @@ TEST(BenchScoring, AveragesSigmaMaximumAndConvergenceOnAKnownCase) {
   EXPECT_NEAR(s.max_point_err, 0.3, 1e-15);
   EXPECT_NEAR(s.converged_pct, 100.0 * 2 / 3, 1e-12);
   EXPECT_NEAR(s.nonconv_err, 0.3, 1e-15);
+  EXPECT_NEAR(s.avg_estimate, 0.02, 1e-15);
 
   // An unsigned method is scored on |d|: reporting +1 for the inside point is no error.
   const std::vector<Answer> unsigned_answers = {{1.0, set.true_nearest[0], -1},
@@ -46,6 +47,7 @@ TEST(BenchScoring, AveragesSigmaMaximumAndConvergenceOnAKnownCase) {
   const Stats u = scoreAnswers(unsigned_answers, set, false);
   EXPECT_EQ(u.max_err, 0.0);
   EXPECT_TRUE(std::isnan(u.converged_pct));
+  EXPECT_TRUE(std::isnan(u.avg_estimate));
   EXPECT_GT(scoreAnswers(unsigned_answers, set, true).max_err, 1.9);  // signed: −1 vs +1
 }
 
