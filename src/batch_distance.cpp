@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "fcl_superellipsoid/point_distance.h"
+#include "solvers.h"
 
 namespace fcl_superellipsoid {
 namespace {
@@ -56,6 +57,50 @@ void forEachChunk(Eigen::Index n, const BatchOptions<S>& options, const Body& bo
   }
 }
 
+/// The checks and the per-vertex solve shared by both forms.
+template <typename S>
+class VertexSolver {
+ public:
+  VertexSolver(const char* function, const Superellipsoid<S>& shape, const fcl::Transform3<S>& X_WS,
+               const Eigen::Ref<const Matrix3X<S>>& p_WV, const BatchOptions<S>& options)
+      : shape_(shape),
+        X_WS_(X_WS),
+        X_SW_(X_WS.inverse(Eigen::Isometry)),
+        p_WV_(p_WV),
+        options_(options) {
+    validateOptions(options.distance);
+    checkVertices<S>(function, p_WV);
+    if (options.warm_start_W != nullptr && options.warm_start_W->cols() != p_WV.cols()) {
+      std::ostringstream msg;
+      msg << function << ": the warm start has " << options.warm_start_W->cols()
+          << " columns, the vertices " << p_WV.cols();
+      throw std::invalid_argument(msg.str());
+    }
+  }
+
+  /// Vertex i in the shape's frame, exactly as pointDistance(shape, X_WS, p_WV.col(i)) has it.
+  Vector3<S> inShapeFrame(Eigen::Index i) const { return X_SW_ * Vector3<S>(p_WV_.col(i)); }
+
+  /// The answer for vertex i (given in the shape's frame), nearest point and normal in the world.
+  PointDistanceResult<S> solve(Eigen::Index i, const Vector3<S>& p_SV) const {
+    PointDistanceResult<S> r =
+        options_.warm_start_W == nullptr
+            ? pointDistance(shape_, p_SV, options_.distance)
+            : detail::pointDistanceWithHint(shape_, p_SV,
+                                            Vector3<S>(X_SW_ * options_.warm_start_W->col(i)),
+                                            options_.distance);
+    r.nearest_point = X_WS_ * r.nearest_point;
+    r.normal = X_WS_.linear() * r.normal;
+    return r;
+  }
+
+ private:
+  const Superellipsoid<S>& shape_;
+  const fcl::Transform3<S> X_WS_, X_SW_;
+  const Eigen::Ref<const Matrix3X<S>>& p_WV_;
+  const BatchOptions<S>& options_;
+};
+
 }  // namespace
 
 template <typename S>
@@ -64,16 +109,14 @@ void batchDistance(const Superellipsoid<S>& shape,
                    const detail::NonDeduced<Eigen::Ref<const Matrix3X<S>>>& p_WV,
                    BatchDistanceResult<S>& result,
                    const detail::NonDeduced<BatchOptions<S>>& options) {
-  validateOptions(options.distance);
-  checkVertices<S>("batchDistance", p_WV);
+  const VertexSolver<S> solver("batchDistance", shape, X_WS, p_WV, options);
   const Eigen::Index n = p_WV.cols();
   result.distance.resize(n);
   result.nearest_point.resize(3, n);
   result.normal.resize(3, n);
   forEachChunk(n, options, [&](Eigen::Index first, Eigen::Index last) {
     for (Eigen::Index i = first; i < last; ++i) {
-      const PointDistanceResult<S> r =
-          pointDistance(shape, X_WS, Vector3<S>(p_WV.col(i)), options.distance);
+      const PointDistanceResult<S> r = solver.solve(i, solver.inShapeFrame(i));
       result.distance[i] = r.distance;
       result.nearest_point.col(i) = r.nearest_point;
       result.normal.col(i) = r.normal;
@@ -91,23 +134,19 @@ std::vector<VertexContact<S>> verticesWithinMargin(
     msg << "verticesWithinMargin: the margin must be finite, got " << margin;
     throw std::invalid_argument(msg.str());
   }
-  validateOptions(options.distance);
-  checkVertices<S>("verticesWithinMargin", p_WV);
+  const VertexSolver<S> solver("verticesWithinMargin", shape, X_WS, p_WV, options);
   const Eigen::Index n = p_WV.cols();
-  const fcl::Transform3<S> X_SW = X_WS.inverse();
   const Vector3<S>& a = shape.radii();
   std::vector<std::vector<VertexContact<S>>> per_chunk((n + kChunk - 1) / kChunk);
   forEachChunk(n, options, [&](Eigen::Index first, Eigen::Index last) {
     std::vector<VertexContact<S>>& out = per_chunk[first / kChunk];
     for (Eigen::Index i = first; i < last; ++i) {
       // The shape lies in its box [−a, a]: the distance to the box is a lower bound.
-      const Vector3<S> p_SV = X_SW * Vector3<S>(p_WV.col(i));
-      const Vector3<S> outside_box = (p_SV.cwiseAbs() - a).cwiseMax(S(0));
-      const S box_distance = outside_box.norm();
+      const Vector3<S> p_SV = solver.inShapeFrame(i);
+      const S box_distance = (p_SV.cwiseAbs() - a).cwiseMax(S(0)).norm();
       if (box_distance > std::max(margin, S(0))) continue;  // (margin < 0: inside the box only)
-      const PointDistanceResult<S> r = pointDistance(shape, p_SV, options.distance);
-      if (r.distance > margin) continue;
-      out.push_back({i, r.distance, X_WS * r.nearest_point, X_WS.linear() * r.normal});
+      const PointDistanceResult<S> r = solver.solve(i, p_SV);
+      if (r.distance <= margin) out.push_back({i, r.distance, r.nearest_point, r.normal});
     }
   });
   std::vector<VertexContact<S>> contacts;

@@ -21,7 +21,8 @@
 // octant (a component that would turn negative shrinks tenfold instead). A step that does not
 // reduce the error is halved, up to four times.
 //
-// Starts: outside, the radial projection (the problem is convex: one minimum), then, if that
+// Starts: outside, the radial projection (the problem is convex: one minimum; a caller's warm
+// start, Query::hint, goes first and saves the rest when it converges), then, if that
 // stalls, the surface points whose normals point at Q and along the contact direction found
 // (∇h(n), the support point), and the radial projection of Q clamped into the bounding box; if
 // Newton still stalls, the bracketed nested projection of outside_projection.h settles it. Inside,
@@ -82,7 +83,10 @@ class ExactSolver {
       return finish(centre, true);
     }
 
-    Candidate<S> best = refine(candidateOnRay(y_));
+    const bool warm = !inside_ && q_.hint != nullptr && !q_.hint->isZero(S(0));
+    // Outside the problem is convex: a warm start that converges is the answer.
+    Candidate<S> best = refine(candidateOnRay(warm ? Vector3<S>(q_.hint->cwiseAbs()) : y_));
+    if (warm && best.error > q_.tolerance) tryStart(y_, &best);
     if (!inside_ && best.error > q_.tolerance) {
       // On elongated shapes the radial start can be far off. The surface points whose normal
       // points at Q, and along the best answer's contact direction, are better starts.

@@ -28,6 +28,12 @@ void validate(const Vector3<S>& p, const DistanceOptions<S>& options) {
 
 }  // namespace
 
+namespace detail {
+template <typename S>
+PointDistanceResult<S> solve(const Superellipsoid<S>& shape, const Vector3<S>& p_SQ,
+                             const Vector3<S>* hint, const DistanceOptions<S>& options);
+}  // namespace detail
+
 template <typename S>
 void validateOptions(const DistanceOptions<S>& options) {
   if (!(std::isfinite(options.tolerance) && options.tolerance > S(0))) {
@@ -58,10 +64,18 @@ PointDistanceResult<S> pointDistance(const Superellipsoid<S>& shape,
                                      const detail::NonDeduced<Vector3<S>>& p_SQ,
                                      const detail::NonDeduced<DistanceOptions<S>>& options) {
   validate(p_SQ, options);
+  return detail::solve<S>(shape, p_SQ, nullptr, options);
+}
+
+namespace detail {
+
+template <typename S>
+PointDistanceResult<S> solve(const Superellipsoid<S>& shape, const Vector3<S>& p_SQ,
+                             const Vector3<S>* hint, const DistanceOptions<S>& options) {
   // Below a few ulps of the query's magnitude no method can resolve the error estimate.
   const S floor = S(8) * std::numeric_limits<S>::epsilon() * (p_SQ.norm() + shape.size());
   const detail::Query<S> q{shape, p_SQ, options.tolerance * shape.size() + floor,
-                           options.max_iterations};
+                           options.max_iterations, hint};
   // At the exact centre the radial direction is undefined, so every method answers with the
   // Exact solver's centre search (documented in point_distance.h).
   if (p_SQ.isZero(S(0))) return detail::solveExact(q);
@@ -75,6 +89,25 @@ PointDistanceResult<S> pointDistance(const Superellipsoid<S>& shape,
   }
   throwInvalid("options.method is not a DistanceMethod", static_cast<int>(options.method));
 }
+
+template <typename S>
+PointDistanceResult<S> pointDistanceWithHint(const Superellipsoid<S>& shape, const Vector3<S>& p_SQ,
+                                             const Vector3<S>& hint_S,
+                                             const DistanceOptions<S>& options) {
+  validate(p_SQ, options);
+  return solve(shape, p_SQ, hint_S.allFinite() ? &hint_S : nullptr, options);
+}
+
+template PointDistanceResult<float> pointDistanceWithHint(const Superellipsoid<float>&,
+                                                          const Vector3<float>&,
+                                                          const Vector3<float>&,
+                                                          const DistanceOptions<float>&);
+template PointDistanceResult<double> pointDistanceWithHint(const Superellipsoid<double>&,
+                                                           const Vector3<double>&,
+                                                           const Vector3<double>&,
+                                                           const DistanceOptions<double>&);
+
+}  // namespace detail
 
 template <typename S>
 PointDistanceResult<S> pointDistance(const Superellipsoid<S>& shape,

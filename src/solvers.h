@@ -16,6 +16,10 @@ struct Query {
   Vector3<S> x;  // the query point, shape frame
   S tolerance;   // absolute, length units
   int max_iterations;
+  // Exact method only: a point near the expected answer (shape frame), e.g. the previous
+  // simulation step's nearest point; nullptr for none. Used as the first start outside, where
+  // the problem is convex and any converged start gives the one answer; ignored inside.
+  const Vector3<S>* hint = nullptr;
 };
 
 template <typename S>
@@ -24,6 +28,13 @@ template <typename S>
 PointDistanceResult<S> solvePaper(const Query<S>& q);
 template <typename S>
 PointDistanceResult<S> solveExact(const Query<S>& q);
+
+/// pointDistance() with a warm-start hint for the Exact method (see Query::hint): p_SQ and
+/// hint_S in the shape's frame; a non-finite hint counts as none. Validates like pointDistance.
+template <typename S>
+PointDistanceResult<S> pointDistanceWithHint(const Superellipsoid<S>& shape, const Vector3<S>& p_SQ,
+                                             const Vector3<S>& hint_S,
+                                             const DistanceOptions<S>& options);
 
 /// Fills a result from a surface point N: d = ±‖Q − N‖ (the sign of the query's side),
 /// n = the unit normal at N, and the paper's error ‖N + d·n − Q‖ (Eq. 7).

@@ -158,6 +158,79 @@ TYPED_TEST(BatchDistanceTest, ResultsDoNotDependOnTheThreadCount) {
   }
 }
 
+/// The Exact solver's accuracy target relative to the size (as in test_point_distance.cpp).
+template <typename S>
+double exactTarget(double e1, double e2) {
+  const bool extreme = std::min(e1, e2) < 0.1 || std::max(e1, e2) > 1.9;
+  if (std::is_same<S, float>::value) return extreme ? 1e-3 : 1e-4;
+  return extreme ? 1e-6 : 1e-9;
+}
+
+TYPED_TEST(BatchDistanceTest, WarmStartsGiveTheSameAnswers) {
+  using S = TypeParam;
+  std::mt19937 rng(6);
+  std::normal_distribution<double> g;
+  for (const auto& a : test::radiiSet()) {
+    for (double e1 : {0.1, 0.5, 1.0, 1.9}) {
+      for (double e2 : {0.3, 1.0, 1.6}) {
+        const Superellipsoid<S> shape{S(a[0]), S(a[1]), S(a[2]), S(e1), S(e2)};
+        SCOPED_TRACE(test::describe(shape));
+        const fcl::Transform3<S> X_WS = randomPose<S>(rng, shape.size());
+        const Matrix3X<S> p_WV = X_WS * hardVertices(shape, rng);
+        const Eigen::Index n = p_WV.cols();
+        BatchDistanceResult<S> cold;
+        batchDistance(shape, X_WS, p_WV, cold);
+
+        // Hints: last step's answers for vertices that moved a little since; the exact
+        // answers; arbitrary surface points; none (NaN).
+        Matrix3X<S> moved = p_WV;
+        for (Eigen::Index i = 0; i < n; ++i) {
+          moved.col(i) += S(0.01) * shape.size() * Vector3<S>(S(g(rng)), S(g(rng)), S(g(rng)));
+        }
+        BatchDistanceResult<S> previous;
+        batchDistance(shape, X_WS, moved, previous);
+        Matrix3X<S> arbitrary(3, n),
+            none = Matrix3X<S>::Constant(3, n, std::numeric_limits<S>::quiet_NaN());
+        test::AngleSampler angles(7);
+        for (Eigen::Index i = 0; i < n; ++i) {
+          const auto [eta, omega] = angles();
+          arbitrary.col(i) = X_WS * shape.surfacePoint(S(eta), S(omega));
+        }
+        for (const Matrix3X<S>* hints :
+             {&previous.nearest_point, &cold.nearest_point, &arbitrary, &none}) {
+          BatchOptions<S> options;
+          options.warm_start_W = hints;
+          BatchDistanceResult<S> warm;
+          batchDistance(shape, X_WS, p_WV, warm, options);
+          const std::vector<VertexContact<S>> within =
+              verticesWithinMargin(shape, X_WS, p_WV, S(0.1) * shape.size(), options);
+          std::size_t next = 0;
+          for (Eigen::Index i = 0; i < n; ++i) {
+            const S tol = S(exactTarget<S>(e1, e2)) * shape.size() +
+                          S(8) * std::numeric_limits<S>::epsilon() * p_WV.col(i).norm();
+            if (hints == &none) {  // no hint: the very same computation
+              ASSERT_EQ(warm.distance[i], cold.distance[i]) << "vertex " << i;
+            }
+            ASSERT_NEAR(warm.distance[i], cold.distance[i], tol) << "vertex " << i;
+            ASSERT_LE((warm.nearest_point.col(i) - cold.nearest_point.col(i)).norm(),
+                      std::max(tol, S(1e3) * test::evalTolerance<S>() * shape.size()))
+                << "vertex " << i;
+            if (next < within.size() && within[next].index == i) {
+              EXPECT_NEAR(within[next].distance, cold.distance[i], tol) << "vertex " << i;
+              ++next;
+            }
+          }
+          EXPECT_EQ(next, within.size());
+        }
+        Matrix3X<S> wrong_size(3, n - 1);
+        BatchOptions<S> options;
+        options.warm_start_W = &wrong_size;
+        EXPECT_THROW(batchDistance(shape, X_WS, p_WV, cold, options), std::invalid_argument);
+      }
+    }
+  }
+}
+
 TYPED_TEST(BatchDistanceTest, EmptyInputAndBadInput) {
   using S = TypeParam;
   const Superellipsoid<S> shape{S(1), S(2), S(3), S(0.5), S(1.5)};

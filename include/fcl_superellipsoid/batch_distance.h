@@ -33,6 +33,12 @@ struct BatchOptions {
   int threads = 0;
   /// No threads below this many vertices (they cost more than they save there).
   int min_parallel_vertices = 4096;
+  /// Optional warm starts, world frame, one column per vertex (3 × N, like p_WV): a point
+  /// near each vertex's expected nearest point, typically the previous step's nearest_point.
+  /// A column with a NaN means "none". Used by the Exact method for vertices outside the
+  /// shape (a convex problem: the answer is the same to the tolerance, found in fewer
+  /// iterations); ignored inside. Not owned; must outlive the call.
+  const Matrix3X<S>* warm_start_W = nullptr;
 };
 
 /// Per-vertex answers, world frame.
@@ -53,8 +59,9 @@ struct VertexContact {
 };
 
 /// Signed distance, nearest point and normal of every vertex.
-/// @throws std::invalid_argument naming the first non-finite vertex (index and value), or
-///         invalid options (see validateOptions); result is then unchanged.
+/// @throws std::invalid_argument naming the first non-finite vertex (index and value),
+///         invalid options (see validateOptions), or a warm start of the wrong size; result
+///         is then unchanged.
 template <typename S>
 FSE_EXPORT void batchDistance(const Superellipsoid<S>& shape,
                               const detail::NonDeduced<fcl::Transform3<S>>& X_WS,
