@@ -42,6 +42,22 @@ void printRow(const ScalingRow& r) {
               r.ns_per_vertex, r.result);
 }
 
+/// Median time of verticesWithinMargin (shape at the origin); value = the count found.
+template <typename S>
+double withinMarginMs(const Superellipsoid<S>& shape, const Eigen::Ref<const Matrix3X<S>>& p_WV,
+                      S margin, int threads, int repetitions, double& value) {
+  BatchOptions<S> options;
+  options.threads = threads;
+  return medianMs(
+      repetitions,
+      [&] {
+        return double(
+            verticesWithinMargin(shape, fcl::Transform3<S>::Identity(), p_WV, margin, options)
+                .size());
+      },
+      value);
+}
+
 /// The scene: single queries, the FCL front end, and the batched within-margin query.
 void sceneRows(const std::shared_ptr<Superellipsoidd>& shape, int n, int repetitions,
                std::vector<ScalingRow>& rows) {
@@ -86,16 +102,7 @@ void sceneRows(const std::shared_ptr<Superellipsoidd>& shape, int n, int repetit
 
   const Eigen::Map<const Matrix3X<double>> p_WV(cloud.vertices[0].data(), 3, n);
   for (int threads : {1, 0}) {
-    BatchOptions<double> options;
-    options.threads = threads;
-    ms = medianMs(
-        repetitions,
-        [&] {
-          return double(
-              verticesWithinMargin(*shape, fcl::Transform3d::Identity(), p_WV, 0.0, options)
-                  .size());
-        },
-        value);
+    ms = withinMarginMs<double>(*shape, p_WV, 0.0, threads, repetitions, value);
     add("batch within margin 0", threads ? 1 : int(std::thread::hardware_concurrency()), 0, ms,
         value);
   }
@@ -146,15 +153,7 @@ void batchRows(const Superellipsoid<S>& shape, const char* kind, int n, int repe
     add("batch distance (sum)", threads ? 1 : all, ms, value);
   }
   for (int threads : {1, 0}) {
-    BatchOptions<S> options;
-    options.threads = threads;
-    ms = medianMs(
-        repetitions,
-        [&] {
-          return double(
-              verticesWithinMargin(shape, X_WS, p_WV, S(0.05) * shape.size(), options).size());
-        },
-        value);
+    ms = withinMarginMs<S>(shape, p_WV, S(0.05) * shape.size(), threads, repetitions, value);
     add("batch within 0.05 (count)", threads ? 1 : all, ms, value);
   }
   // A simulation step: the previous step's nearest points (vertices 0.001 × size away) as
