@@ -47,6 +47,12 @@ std::vector<const BenchShape*> selectShapes(const std::vector<std::string>& name
   return out;
 }
 
+/// The seed of a (shape, side) point set: the same whichever shapes a run selects.
+unsigned pointSeed(unsigned seed, const BenchShape& shape, Side side) {
+  const auto index = static_cast<unsigned>(&shape - benchShapes().data());
+  return seed + 7 * index + static_cast<unsigned>(side);
+}
+
 }  // namespace
 
 Stats scoreAnswers(const std::vector<Answer>& answers, const PointSet& set, bool is_signed) {
@@ -117,7 +123,7 @@ std::vector<Row> runAccuracyTime(const RunConfig& config) {
       const std::string task = shape.name + ", " + sideKey(side);
       progress.advance(0, task + ": points and truth");
       const PointSet set = makePointSet(shape, side, config.points, config.reference_points,
-                                        config.seed + unsigned(7 * si) + unsigned(side));
+                                        pointSeed(config.seed, shape, side));
       // Untimed pass: warms caches and gives the answers to score.
       std::vector<Stats> stats;
       for (const auto& method : methods) {
