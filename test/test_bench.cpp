@@ -114,7 +114,9 @@ TEST(BenchRun, ATinyRunFillsEveryColumnOfEveryRow) {
     if (r.family == kExact || r.family == kFrontEnd) EXPECT_LT(r.stats.max_point_err, 1e-6);
     if (r.family == kFclMesh) EXPECT_LT(r.stats.max_err, 0.1);
     if (r.family == kFclMesh && r.side != "inside") EXPECT_LT(r.stats.max_point_err, 0.3);
-    if (r.family == kBullet) EXPECT_LT(r.stats.max_err, 1e-2);
+    // Bullet is single precision with GJK/EPA tolerances of 1e-4 (relative to the distance,
+    // up to 1000 × size far away): a sign or frame mistake costs ~ the size, or the distance.
+    if (r.family == kBullet) EXPECT_LT(r.stats.max_err, r.side == "far" ? 1.0 : 0.1);
   }
   // The mesh row is its own baseline.
   for (const Row& r : rows) {
