@@ -20,7 +20,7 @@
 namespace fcl_superellipsoid {
 namespace {
 
-constexpr Eigen::Index kChunk = 1024;
+constexpr Eigen::Index kChunk = 256;
 
 template <typename S>
 void checkVertices(const char* function, const Eigen::Ref<const Matrix3X<S>>& p_WV) {

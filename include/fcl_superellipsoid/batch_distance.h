@@ -31,8 +31,10 @@ struct BatchOptions {
   DistanceOptions<S> distance;  ///< method, tolerance, iteration cap (default: Exact)
   /// 0: as many threads as TBB offers; 1: the calling thread only; n: at most n.
   int threads = 0;
-  /// No threads below this many vertices (they cost more than they save there).
-  int min_parallel_vertices = 4096;
+  /// No threads below this many vertices. Measured on 2 cores (work is cut into chunks of
+  /// 256 vertices): from 1,024 up, threads pay both for vertices near the surface (1.8×) and
+  /// for far vertices the within-margin cull drops in nanoseconds (1.1×); below, only the former.
+  int min_parallel_vertices = 1024;
   /// Optional warm starts, world frame, one column per vertex (3 × N, like p_WV): a point
   /// near each vertex's expected nearest point, typically the previous step's nearest_point.
   /// A column with a NaN means "none". Used by the Exact method for vertices outside the
