@@ -42,6 +42,12 @@ void printRow(const ScalingRow& r) {
               r.ns_per_vertex, r.result);
 }
 
+/// The threads a batched call with BatchOptions::threads = `threads` really uses for n vertices.
+int threadsUsed(int threads, int n) {
+  const bool parallel = threads != 1 && n >= BatchOptions<double>().min_parallel_vertices;
+  return parallel ? int(std::thread::hardware_concurrency()) : 1;
+}
+
 /// Median time of verticesWithinMargin (shape at the origin); value = the count found.
 template <typename S>
 double withinMarginMs(const Superellipsoid<S>& shape, const Eigen::Ref<const Matrix3X<S>>& p_WV,
@@ -103,8 +109,7 @@ void sceneRows(const std::shared_ptr<Superellipsoidd>& shape, int n, int repetit
   const Eigen::Map<const Matrix3X<double>> p_WV(cloud.vertices[0].data(), 3, n);
   for (int threads : {1, 0}) {
     ms = withinMarginMs<double>(*shape, p_WV, 0.0, threads, repetitions, value);
-    add("batch within margin 0", threads ? 1 : int(std::thread::hardware_concurrency()), 0, ms,
-        value);
+    add("batch within margin 0", threadsUsed(threads, n), 0, ms, value);
   }
 }
 
@@ -122,7 +127,6 @@ void batchRows(const Superellipsoid<S>& shape, const char* kind, int n, int repe
     p_WV.col(i) = p + t * shape.normal(p);
   }
   const char* scalar = std::is_same<S, float>::value ? "float" : "double";
-  const int all = int(std::thread::hardware_concurrency());
   auto add = [&](const char* path, int threads, double ms, double value) {
     rows.push_back({kind, scalar, n, path, threads, 0, ms, 1e6 * ms / n, value});
     printRow(rows.back());
@@ -150,11 +154,11 @@ void batchRows(const Superellipsoid<S>& shape, const char* kind, int n, int repe
           return double(batch.distance.template cast<double>().sum());
         },
         value);
-    add("batch distance (sum)", threads ? 1 : all, ms, value);
+    add("batch distance (sum)", threadsUsed(threads, n), ms, value);
   }
   for (int threads : {1, 0}) {
     ms = withinMarginMs<S>(shape, p_WV, S(0.05) * shape.size(), threads, repetitions, value);
-    add("batch within 0.05 (count)", threads ? 1 : all, ms, value);
+    add("batch within 0.05 (count)", threadsUsed(threads, n), ms, value);
   }
   // A simulation step: the previous step's nearest points (vertices 0.001 × size away) as
   // warm starts.
@@ -188,7 +192,7 @@ std::vector<ScalingRow> runScaling(const std::vector<int>& sizes, int repetition
       "\nScaling: point clouds around the cloth-scene shape (3.5, 3, 2; 0.4, 0.3), Exact "
       "solver, median of %d.\nscene: 1 %% of the vertices within +-0.05 x size of the "
       "surface, the rest in a cube of side 20 x size;\nnear: all within +-0.05 x size; "
-      "far: all 5 to 15 x size away. threads 0 in the options = all %u.\n",
+      "far: all 5 to 15 x size away. threads: those a call really used (of %u).\n",
       repetitions, std::thread::hardware_concurrency());
   std::printf("%-6s %-7s %9s  %-24s %7s %9s %12s %11s %14s\n", "cloud", "scalar", "vertices",
               "path", "threads", "BVH [ms]", "query [ms]", "ns/vertex", "result");
