@@ -39,6 +39,17 @@ def geomean(values):
     return math.exp(sum(math.log(v) for v in values) / len(values)) if values else float("nan")
 
 
+def loglog(ax, xlabel, ylabel, title=None):
+    """Log-log axes with labels and a light grid."""
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    if title:
+        ax.set_title(title)
+    ax.grid(True, which="both", alpha=0.3)
+
+
 def aggregate(rows):
     """(side, family, setting) -> setting value, mean relative error, geometric-mean time."""
     groups = defaultdict(list)
@@ -69,12 +80,8 @@ def plot_pareto(rows, sides, path):
             for x, y, setting in zip(xs, ys, [p[3] for p in pts]):
                 if setting:
                     ax.annotate(setting, (x, y), fontsize=6, xytext=(3, 3), textcoords="offset points")
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_title(side)
-        ax.set_xlabel("time per query [us] (geometric mean over shapes)")
-        ax.set_ylabel("average |d - d_true| / size")
-        ax.grid(True, which="both", alpha=0.3)
+        loglog(ax, "time per query [us] (geometric mean over shapes)", "average |d - d_true| / size",
+               side)
     for ax in list(axes.flat)[len(sides):]:
         ax.axis("off")
     axes.flat[0].legend(fontsize=7)
@@ -103,11 +110,7 @@ def plot_mesh_resolution(rows, sides, path):
             ax_err.axhline(max(errs), color=colour, linestyle=":", label=f"{family} {setting} (worst side)")
             ax_time.axhline(geomean(times), color=colour, linestyle=":", label=f"{family} {setting}")
     for ax, ylabel in ((ax_err, "average |d - d_true| / size"), (ax_time, "time per query [us]")):
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlabel("vertices of the tessellation")
-        ax.set_ylabel(ylabel)
-        ax.grid(True, which="both", alpha=0.3)
+        loglog(ax, "vertices of the tessellation", ylabel)
     ax_time.legend(fontsize=6)
     fig.suptitle("FCL on a tessellation: error and time against resolution")
     fig.tight_layout()
@@ -135,12 +138,7 @@ def plot_scaling(csv_path, path):
             pts.sort()
             ax.plot([q[0] for q in pts], [q[1] for q in pts], marker="o", label=name,
                     linestyle="--" if "far" in name else "-")
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlabel("vertices")
-        ax.set_ylabel("time per vertex [ns]")
-        ax.set_title(title)
-        ax.grid(True, which="both", alpha=0.3)
+        loglog(ax, "vertices", "time per vertex [ns]", title)
         ax.legend(fontsize=6)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
