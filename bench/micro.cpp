@@ -51,10 +51,13 @@ void registerAll() {
           {"FclMesh/272", [](const BenchShape& s) { return makeFclMeshMethod(s, 272); }},
           {"FclMesh/4k", [](const BenchShape& s) { return makeFclMeshMethod(s, 4000); }},
           {"FclConvex/272", [](const BenchShape& s) { return makeFclConvexMethod(s, 272); }},
+          {"FclEllipsoid", [](const BenchShape& s) { return makeFclEllipsoidMethod(s); }},
           {"Bullet", [](const BenchShape& s) { return makeBulletMethod(s); }},
       };
   for (const auto& [name, make] : methods) {
     for (const char* shape_class : {"round", "sharp", "pinched", "cloth"}) {
+      // FCL's Ellipsoid exists only for ε1 = ε2 = 1: the round class.
+      if (name == "FclEllipsoid" && std::string(shape_class) != "round") continue;
       benchmark::RegisterBenchmark((name + "/" + shape_class).c_str(),
                                    [make = make, shape_class](benchmark::State& state) {
                                      runQueries(state, shape_class, make);
