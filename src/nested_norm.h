@@ -36,6 +36,33 @@ inline S pnorm2(S a, S b, S p, S inv_p) {
   return m * std::pow(S(1) + std::pow(lo / m, p), inv_p);
 }
 
+/// ‖(a, b)‖_p with the gradient's powers (a/N)^(p−1), (b/N)^(p−1), for a, b ≥ 0 and p > 1.
+/// The powers come from the norm's own q = (lo/m)^p without another pow():
+///   (m/N)^p = 1/(1 + q)   ⇒  (m/N)^(p−1) = N/(m·(1 + q)),
+///   (lo/N)^p = q/(1 + q)  ⇒  (lo/N)^(p−1) = q·N/(lo·(1 + q)).
+/// Where q is subnormal or underflows (lo/m tiny, p large) it carries too few digits, and
+/// pow() gives (lo/N)^(p−1) instead.
+template <typename S>
+struct PNorm2 {
+  S norm, pow_a, pow_b;  // N, (a/N)^(p−1), (b/N)^(p−1)
+};
+
+template <typename S>
+inline PNorm2<S> pnorm2WithPowers(S a, S b, S p, S inv_p) {
+  const S m = std::max(a, b);
+  if (m == S(0)) return {S(0), S(0), S(0)};
+  const S lo = std::min(a, b);
+  const S q = std::pow(lo / m, p);
+  const S n = m * std::pow(S(1) + q, inv_p);
+  const S pow_m = n / (m * (S(1) + q));
+  S pow_lo = S(0);
+  if (lo > S(0)) {
+    pow_lo =
+        q >= std::numeric_limits<S>::min() ? q * n / (lo * (S(1) + q)) : std::pow(lo / n, p - S(1));
+  }
+  return a >= b ? PNorm2<S>{n, pow_m, pow_lo} : PNorm2<S>{n, pow_lo, pow_m};
+}
+
 /// sgn(c)·|c|^e, the signed power of the parametric form.
 template <typename S>
 inline S signedPow(S c, S e) {
@@ -75,8 +102,10 @@ struct NestedNorm {
   NestedNormEval<S> evaluate(const Vector3<S>& w, bool with_hessian) const {
     NestedNormEval<S> out;
     const Vector3<S> u = w.cwiseProduct(scale);
-    const S r = pnorm2(u[0], u[1], p1, inv_p1);
-    out.value = pnorm2(r, u[2], p2, inv_p2);
+    const PNorm2<S> level1 = pnorm2WithPowers(u[0], u[1], p1, inv_p1);
+    const S r = level1.norm;
+    const PNorm2<S> level2 = pnorm2WithPowers(r, u[2], p2, inv_p2);
+    out.value = level2.norm;
     if (!(out.value > S(0))) {  // the origin: N is not differentiable; report zeros
       out.gradient.setZero();
       out.hessian.setZero();
@@ -88,8 +117,8 @@ struct NestedNorm {
     // (using 1 − (a/N)^p = (b/N)^p, which avoids the cancellation).
     const S t1 = r > S(0) ? u[0] / r : S(0), t2 = r > S(0) ? u[1] / r : S(0);
     const S tr = r / out.value, t3 = u[2] / out.value;
-    const S r1 = std::pow(t1, p1 - S(1)), r2 = std::pow(t2, p1 - S(1));
-    const S g_r = std::pow(tr, p2 - S(1)), g_3 = std::pow(t3, p2 - S(1));
+    const S r1 = level1.pow_a, r2 = level1.pow_b;    // t1^(p1−1), t2^(p1−1)
+    const S g_r = level2.pow_a, g_3 = level2.pow_b;  // tr^(p2−1), t3^(p2−1)
     const Vector3<S> grad_u(g_r * r1, g_r * r2, g_3);
     out.gradient = grad_u.cwiseProduct(scale);
     if (!with_hessian) return out;
