@@ -9,7 +9,6 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
-#include <map>
 
 #include "accuracy_time.h"
 #include "aspect_sweep.h"

@@ -30,43 +30,44 @@ const std::vector<BenchShape>& benchShapes() {
   return shapes;
 }
 
+namespace {
+
+/// One row per point set, in Side's order: its key and what it is.
+struct SideInfo {
+  Side side;
+  const char* key;
+  const char* description;
+};
+
+constexpr SideInfo kSides[] = {
+    {Side::kPaperOutside, "paper+0.05", "surface points +0.05 x size along the normal (paper)"},
+    {Side::kPaperInside, "paper-0.015", "surface points -0.015 x size along the normal (paper)"},
+    {Side::kNear, "near", "surface points +U(0, 0.5) x size along the normal"},
+    {Side::kFar, "far", "surface points +10^U(0, 3) x size along the normal"},
+    {Side::kInside, "inside", "uniform in the volume"},
+};
+
+const SideInfo& info(Side side) {
+  for (const SideInfo& s : kSides) {
+    if (s.side == side) return s;
+  }
+  throw std::invalid_argument("unknown Side " + std::to_string(static_cast<int>(side)));
+}
+
+}  // namespace
+
 const std::vector<Side>& allSides() {
-  static const std::vector<Side> sides = {Side::kPaperOutside, Side::kPaperInside, Side::kNear,
-                                          Side::kFar, Side::kInside};
+  static const std::vector<Side> sides = [] {
+    std::vector<Side> out;
+    for (const SideInfo& s : kSides) out.push_back(s.side);
+    return out;
+  }();
   return sides;
 }
 
-const char* sideKey(Side side) {
-  switch (side) {
-    case Side::kPaperOutside:
-      return "paper+0.05";
-    case Side::kPaperInside:
-      return "paper-0.015";
-    case Side::kNear:
-      return "near";
-    case Side::kFar:
-      return "far";
-    case Side::kInside:
-      return "inside";
-  }
-  return "?";
-}
+const char* sideKey(Side side) { return info(side).key; }
 
-const char* sideDescription(Side side) {
-  switch (side) {
-    case Side::kPaperOutside:
-      return "surface points +0.05 x size along the normal (paper)";
-    case Side::kPaperInside:
-      return "surface points -0.015 x size along the normal (paper)";
-    case Side::kNear:
-      return "surface points +U(0, 0.5) x size along the normal";
-    case Side::kFar:
-      return "surface points +10^U(0, 3) x size along the normal";
-    case Side::kInside:
-      return "uniform in the volume";
-  }
-  return "?";
-}
+const char* sideDescription(Side side) { return info(side).description; }
 
 bool truthByConstruction(Side side) { return side != Side::kPaperInside && side != Side::kInside; }
 
