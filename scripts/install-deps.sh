@@ -4,7 +4,7 @@
 #   scripts/install-deps.sh --bench   and python3-matplotlib, for the benchmark's plots
 set -euo pipefail
 packages=(cmake g++ make libfcl-dev libccd-dev libeigen3-dev liboctomap-dev libgtest-dev
-          libbenchmark-dev libcli11-dev libbullet-dev nlohmann-json3-dev libtbb-dev)
+          libbenchmark-dev libcli11-dev libbullet-dev nlohmann-json3-dev libtbb-dev libhwy-dev)
 if [ "${1:-}" = "--bench" ]; then
   packages+=(python3-matplotlib)
 fi

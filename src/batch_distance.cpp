@@ -1,4 +1,6 @@
-// Batched queries: a bounding-box cull, then the scalar solver per vertex, on TBB's threads.
+// Batched queries: a bounding-box cull, then the Exact method's SIMD kernel (batch_kernel.h) on
+// whole vectors of vertices, with the scalar solver for the vertices it hands back (and for the
+// other methods), on TBB's threads.
 //
 // Determinism: the vertices are cut into fixed chunks independent of the thread count; each
 // chunk's contacts are kept apart and concatenated in chunk order, so every thread count
@@ -10,10 +12,15 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <array>
+#include <atomic>
+#include <cstdint>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
+#include "batch_kernel.h"
 #include "fcl_superellipsoid/point_distance.h"
 #include "solvers.h"
 
@@ -57,6 +64,38 @@ void forEachChunk(Eigen::Index n, const BatchOptions<S>& options, const Body& bo
   }
 }
 
+/// One chunk's vertices as SIMD lanes (batch_kernel.h), structure of arrays.
+template <typename S>
+struct ChunkLanes {
+  static constexpr std::size_t kCapacity = std::size_t(kChunk) + detail::kMaxLanes;
+  std::size_t count = 0;
+  std::array<S, kCapacity> query[3], hint[3], point[3], normal[3], error;
+  std::array<std::int32_t, kCapacity> status;
+  std::array<std::size_t, kCapacity> source;  // the lane of the outside pass (inside pass only)
+
+  detail::LaneArrays<S> arrays(bool with_hints) {
+    detail::LaneArrays<S> out{{query[0].data(), query[1].data(), query[2].data()},
+                              {nullptr, nullptr, nullptr},
+                              {point[0].data(), point[1].data(), point[2].data()},
+                              {normal[0].data(), normal[1].data(), normal[2].data()},
+                              error.data(),
+                              status.data()};
+    if (with_hints) {
+      for (int c = 0; c < 3; ++c) out.hint[c] = hint[c].data();
+    }
+    return out;
+  }
+  /// Fills the lanes up to a whole vector with copies of the last one (results ignored).
+  void pad() {
+    for (std::size_t k = count; k < count + detail::kMaxLanes && count > 0; ++k) {
+      for (int c = 0; c < 3; ++c) {
+        query[c][k] = query[c][count - 1];
+        hint[c][k] = hint[c][count - 1];
+      }
+    }
+  }
+};
+
 /// The checks and the per-vertex solve shared by both forms.
 template <typename S>
 class VertexSolver {
@@ -67,7 +106,15 @@ class VertexSolver {
         X_WS_(X_WS),
         X_SW_(X_WS.inverse(Eigen::Isometry)),
         p_WV_(p_WV),
-        options_(options) {
+        options_(options),
+        simd_(options.vectorize && options.distance.method == DistanceMethod::kExact),
+        problem_{detail::NestedNorm<S>::gauge(shape),
+                 detail::NestedNorm<S>::support(shape),
+                 shape.radii(),
+                 detail::primalIsSmoother(shape),
+                 options.distance.tolerance * shape.size(),
+                 shape.size(),
+                 options.distance.max_iterations} {
     validateOptions(options.distance);
     checkVertices<S>(function, p_WV);
     if (options.warm_start_W != nullptr && options.warm_start_W->cols() != p_WV.cols()) {
@@ -78,10 +125,102 @@ class VertexSolver {
     }
   }
 
+  /// Solves the vertices [first, last) that `keep(p_SV)` accepts and calls emit(i, result) for
+  /// each, in index order (nearest point and normal in the world frame). With the SIMD kernel
+  /// for the Exact method, else one scalar query per vertex.
+  template <typename Keep, typename Emit>
+  void solveChunk(Eigen::Index first, Eigen::Index last, const Keep& keep, const Emit& emit) {
+    if (!simd_) {
+      std::size_t solved = 0;
+      for (Eigen::Index i = first; i < last; ++i) {
+        const Vector3<S> p_SV = inShapeFrame(i);
+        if (!keep(p_SV)) continue;
+        emit(i, solve(i, p_SV));
+        ++solved;
+      }
+      count(std::size_t(last - first) - solved, 0, solved);
+      return;
+    }
+    ChunkLanes<S> lanes;
+    std::array<Eigen::Index, kChunk> vertex;
+    std::array<Vector3<S>, kChunk> p_SV;
+    const S nan = std::numeric_limits<S>::quiet_NaN();
+    for (Eigen::Index i = first; i < last; ++i) {
+      const std::size_t k = lanes.count;
+      p_SV[k] = inShapeFrame(i);
+      if (!keep(p_SV[k])) continue;
+      vertex[k] = i;
+      const Vector3<S> hint = options_.warm_start_W == nullptr
+                                  ? Vector3<S>::Constant(nan)
+                                  : Vector3<S>(X_SW_ * options_.warm_start_W->col(i));
+      for (int c = 0; c < 3; ++c) {
+        lanes.query[c][k] = std::abs(p_SV[k][c]);
+        lanes.hint[c][k] = std::abs(hint[c]);
+      }
+      ++lanes.count;
+    }
+    const std::size_t culled = std::size_t(last - first) - lanes.count;
+    if (lanes.count == 0) return count(culled, 0, 0);
+    lanes.pad();
+    detail::solveLanes(problem_, lanes.arrays(options_.warm_start_W != nullptr), lanes.count,
+                       false);
+
+    // The vertices found inside, gathered into whole vectors for the inside pass.
+    ChunkLanes<S> inside;
+    for (std::size_t k = 0; k < lanes.count; ++k) {
+      if (lanes.status[k] != detail::kLaneInside) continue;
+      for (int c = 0; c < 3; ++c) inside.query[c][inside.count] = lanes.query[c][k];
+      inside.source[inside.count++] = k;
+    }
+    std::array<bool, kChunk> is_inside{};
+    if (inside.count > 0) {
+      inside.pad();
+      detail::solveLanes(problem_, inside.arrays(false), inside.count, true);
+      for (std::size_t j = 0; j < inside.count; ++j) {
+        const std::size_t k = inside.source[j];
+        is_inside[k] = true;
+        lanes.status[k] = inside.status[j];
+        for (int c = 0; c < 3; ++c) {
+          lanes.point[c][k] = inside.point[c][j];
+          lanes.normal[c][k] = inside.normal[c][j];
+        }
+      }
+    }
+
+    std::size_t handed_back = 0;
+    for (std::size_t k = 0; k < lanes.count; ++k) {
+      if (lanes.status[k] != detail::kLaneSolved) {
+        emit(vertex[k], solve(vertex[k], p_SV[k]));
+        ++handed_back;
+        continue;
+      }
+      // Back from the first octant to the vertex's own (ExactSolver::finish), then to W.
+      PointDistanceResult<S> r;
+      for (int c = 0; c < 3; ++c) {
+        const bool negative = p_SV[k][c] < S(0);
+        r.nearest_point[c] = negative ? -lanes.point[c][k] : lanes.point[c][k];
+        r.normal[c] = negative ? -lanes.normal[c][k] : lanes.normal[c][k];
+      }
+      const S length = (p_SV[k] - r.nearest_point).norm();
+      r.distance = is_inside[k] ? -length : length;
+      r.nearest_point = X_WS_ * r.nearest_point;
+      r.normal = X_WS_.linear() * r.normal;
+      emit(vertex[k], r);
+    }
+    count(culled, lanes.count - handed_back, handed_back);
+  }
+
+  /// Writes the counts of all chunks to BatchOptions::statistics, if set.
+  void reportStatistics() const {
+    if (options_.statistics == nullptr) return;
+    *options_.statistics = {culled_.load(), simd_solved_.load(), scalar_solved_.load()};
+  }
+
+ private:
   /// Vertex i in the shape's frame, exactly as pointDistance(shape, X_WS, p_WV.col(i)) has it.
   Vector3<S> inShapeFrame(Eigen::Index i) const { return X_SW_ * Vector3<S>(p_WV_.col(i)); }
 
-  /// The answer for vertex i (given in the shape's frame), nearest point and normal in the world.
+  /// The scalar answer for vertex i (given in the shape's frame), world frame.
   PointDistanceResult<S> solve(Eigen::Index i, const Vector3<S>& p_SV) const {
     PointDistanceResult<S> r =
         options_.warm_start_W == nullptr
@@ -94,11 +233,19 @@ class VertexSolver {
     return r;
   }
 
- private:
+  void count(std::size_t culled, std::size_t simd, std::size_t scalar) {
+    culled_ += culled;
+    simd_solved_ += simd;
+    scalar_solved_ += scalar;
+  }
+
   const Superellipsoid<S>& shape_;
   const fcl::Transform3<S> X_WS_, X_SW_;
   const Eigen::Ref<const Matrix3X<S>>& p_WV_;
   const BatchOptions<S>& options_;
+  const bool simd_;
+  const detail::LaneProblem<S> problem_;
+  std::atomic<std::size_t> culled_{0}, simd_solved_{0}, scalar_solved_{0};  // chunks add up
 };
 
 }  // namespace
@@ -109,19 +256,21 @@ void batchDistance(const Superellipsoid<S>& shape,
                    const detail::NonDeduced<Eigen::Ref<const Matrix3X<S>>>& p_WV,
                    BatchDistanceResult<S>& result,
                    const detail::NonDeduced<BatchOptions<S>>& options) {
-  const VertexSolver<S> solver("batchDistance", shape, X_WS, p_WV, options);
+  VertexSolver<S> solver("batchDistance", shape, X_WS, p_WV, options);
   const Eigen::Index n = p_WV.cols();
   result.distance.resize(n);
   result.nearest_point.resize(3, n);
   result.normal.resize(3, n);
   forEachChunk(n, options, [&](Eigen::Index first, Eigen::Index last) {
-    for (Eigen::Index i = first; i < last; ++i) {
-      const PointDistanceResult<S> r = solver.solve(i, solver.inShapeFrame(i));
-      result.distance[i] = r.distance;
-      result.nearest_point.col(i) = r.nearest_point;
-      result.normal.col(i) = r.normal;
-    }
+    solver.solveChunk(
+        first, last, [](const Vector3<S>&) { return true; },
+        [&](Eigen::Index i, const PointDistanceResult<S>& r) {
+          result.distance[i] = r.distance;
+          result.nearest_point.col(i) = r.nearest_point;
+          result.normal.col(i) = r.normal;
+        });
   });
+  solver.reportStatistics();
 }
 
 template <typename S>
@@ -134,21 +283,22 @@ std::vector<VertexContact<S>> verticesWithinMargin(
     msg << "verticesWithinMargin: the margin must be finite, got " << margin;
     throw std::invalid_argument(msg.str());
   }
-  const VertexSolver<S> solver("verticesWithinMargin", shape, X_WS, p_WV, options);
+  VertexSolver<S> solver("verticesWithinMargin", shape, X_WS, p_WV, options);
   const Eigen::Index n = p_WV.cols();
   const Vector3<S>& a = shape.radii();
+  const S cull = std::max(margin, S(0));  // (margin < 0: inside the box only)
   std::vector<std::vector<VertexContact<S>>> per_chunk((n + kChunk - 1) / kChunk);
   forEachChunk(n, options, [&](Eigen::Index first, Eigen::Index last) {
     std::vector<VertexContact<S>>& out = per_chunk[first / kChunk];
-    for (Eigen::Index i = first; i < last; ++i) {
-      // The shape lies in its box [−a, a]: the distance to the box is a lower bound.
-      const Vector3<S> p_SV = solver.inShapeFrame(i);
-      const S box_distance = (p_SV.cwiseAbs() - a).cwiseMax(S(0)).norm();
-      if (box_distance > std::max(margin, S(0))) continue;  // (margin < 0: inside the box only)
-      const PointDistanceResult<S> r = solver.solve(i, p_SV);
-      if (r.distance <= margin) out.push_back({i, r.distance, r.nearest_point, r.normal});
-    }
+    solver.solveChunk(
+        first, last,
+        // The shape lies in its box [−a, a]: the distance to the box is a lower bound.
+        [&](const Vector3<S>& p_SV) { return (p_SV.cwiseAbs() - a).cwiseMax(S(0)).norm() <= cull; },
+        [&](Eigen::Index i, const PointDistanceResult<S>& r) {
+          if (r.distance <= margin) out.push_back({i, r.distance, r.nearest_point, r.normal});
+        });
   });
+  solver.reportStatistics();
   std::vector<VertexContact<S>> contacts;
   for (auto& chunk : per_chunk) contacts.insert(contacts.end(), chunk.begin(), chunk.end());
   return contacts;

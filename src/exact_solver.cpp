@@ -171,15 +171,6 @@ class ExactSolver {
     return best;
   }
 
-  /// The primal is smooth where ε ≤ 1, the dual where ε ≥ 1: start with the one whose worst
-  /// exponent strays less from its smooth side.
-  static bool primalIsSmoother(const Superellipsoid<S>& shape) {
-    const S e1 = shape.eps1(), e2 = shape.eps2();
-    const S primal_roughness = std::max({S(0), e1 - S(1), e2 - S(1)});
-    const S dual_roughness = std::max({S(0), S(1) - e1, S(1) - e2});
-    return primal_roughness <= dual_roughness;
-  }
-
   /// Runs Newton from a start (the ray's surface point) and keeps the result if it beats best.
   void tryStart(const Vector3<S>& ray, Candidate<S>* best) {
     const Candidate<S> c = refine(candidateOnRay(ray));

@@ -5,6 +5,8 @@
 // query in the shape's frame and an absolute tolerance (already scaled by the shape's size and
 // floored at the rounding level of the query).
 
+#include <algorithm>
+
 #include "fcl_superellipsoid/point_distance.h"
 
 namespace fcl_superellipsoid {
@@ -35,6 +37,17 @@ template <typename S>
 PointDistanceResult<S> pointDistanceWithHint(const Superellipsoid<S>& shape, const Vector3<S>& p_SQ,
                                              const Vector3<S>& hint_S,
                                              const DistanceOptions<S>& options);
+
+/// The primal formulation (gauge G) is smooth where ε ≤ 1, the dual (support function h) where
+/// ε ≥ 1: the Exact method starts with the one whose worst exponent strays less from its smooth
+/// side.
+template <typename S>
+bool primalIsSmoother(const Superellipsoid<S>& shape) {
+  const S e1 = shape.eps1(), e2 = shape.eps2();
+  const S primal_roughness = std::max({S(0), e1 - S(1), e2 - S(1)});
+  const S dual_roughness = std::max({S(0), S(1) - e1, S(1) - e2});
+  return primal_roughness <= dual_roughness;
+}
 
 /// Fills a result from a surface point N: d = ±‖Q − N‖ (the sign of the query's side),
 /// n = the unit normal at N, and the paper's error ‖N + d·n − Q‖ (Eq. 7).

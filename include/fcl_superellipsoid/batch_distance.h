@@ -9,11 +9,13 @@
 ///
 ///     Eigen::Map<const Eigen::Matrix3Xd> p_WV(data, 3, n);
 ///
-/// Every answer is the scalar pointDistance() of that vertex with the same options, so the
-/// results agree with single queries vertex for vertex. Work is spread over TBB's threads
+/// Every answer agrees with the scalar pointDistance() of that vertex with the same options,
+/// vertex for vertex: to the solver's tolerance with the Exact method's SIMD solver (the
+/// default), bitwise with BatchOptions::vectorize = false. Work is spread over TBB's threads
 /// above a size where threads pay; results do not depend on the thread count.
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <vector>
 
 #include "fcl_superellipsoid/distance_options.h"
@@ -26,6 +28,17 @@ namespace fcl_superellipsoid {
 template <typename S>
 using Matrix3X = Eigen::Matrix<S, 3, Eigen::Dynamic>;
 
+/// The instruction set the SIMD solver runs on this CPU ("AVX3" = AVX-512, "AVX2", "SSE4",
+/// "SSSE3" or "EMU128" = portable code), chosen once at run time.
+FSE_EXPORT const char* simdInstructionSet();
+
+/// Where the vertices of one batched call went (BatchOptions::statistics).
+struct BatchStatistics {
+  std::size_t culled = 0;  ///< dropped by verticesWithinMargin's bounding-box test
+  std::size_t simd = 0;    ///< answered by the SIMD solver
+  std::size_t scalar = 0;  ///< answered by the scalar solver (handed back, or not vectorised)
+};
+
 template <typename S>
 struct BatchOptions {
   DistanceOptions<S> distance;  ///< method, tolerance, iteration cap (default: Exact)
@@ -35,6 +48,15 @@ struct BatchOptions {
   /// 256 vertices): from 1,024 up, threads pay both for vertices near the surface (1.8×) and
   /// for far vertices the within-margin cull drops in nanoseconds (1.1×); below, only the former.
   int min_parallel_vertices = 1024;
+  /// The Exact method on SIMD lanes (the default): several vertices per instruction, with the
+  /// instruction set chosen at run time for the CPU (AVX-512, AVX2, SSE4, or portable code).
+  /// Answers agree with single queries to the solver's tolerance; a vertex the SIMD solver
+  /// cannot settle the way the scalar solver would (see the README) goes to the scalar solver.
+  /// false: every vertex through the scalar pointDistance(), bitwise equal to single queries.
+  /// The other methods always run the scalar solver.
+  bool vectorize = true;
+  /// If set, overwritten with where this call's vertices went.
+  BatchStatistics* statistics = nullptr;
   /// Optional warm starts, world frame, one column per vertex (3 × N, like p_WV): a point
   /// near each vertex's expected nearest point, typically the previous step's nearest_point.
   /// A column with a NaN means "none". Used by the Exact method for vertices outside the
