@@ -269,14 +269,29 @@ class LaneSolver {
     return c;
   }
 
-  /// Newton from a start in the smooth formulation (ExactSolver::refine's first formulation),
-  /// on the lanes of `lanes`, with at most 60 iterations and the caller's cap. Returns the
-  /// candidate; `converged` gets the lanes whose error reached the tolerance.
+  /// ExactSolver::refine on the lanes of `lanes`: Newton in the smooth formulation, and where
+  /// that stalls, in the other, from where the first stopped and then from the start; each
+  /// start has at most 60 iterations of the caller's cap. Returns the candidate; `converged`
+  /// gets the lanes whose error reached the tolerance.
   Candidate<D> refine(const Candidate<D>& start, M lanes, M* converged) {
     const V limit = hn::Min(hn::Add(iterations_, hn::Set(d_, T(kIterationsPerStart))),
                             hn::Set(d_, T(problem_.max_iterations)));
-    const Candidate<D> c =
-        problem_.primal_first ? newtonPrimal(start, lanes, limit) : newtonDual(start, lanes, limit);
+    const bool primal_first = problem_.primal_first;
+    Candidate<D> c =
+        primal_first ? newtonPrimal(start, lanes, limit) : newtonDual(start, lanes, limit);
+    M retry = stillGoing(lanes, c, limit);
+    if (!hn::AllFalse(d_, retry)) {
+      if (!primal_first) c = Select(retry, asPrimal(c), c);
+      const Candidate<D> warm =
+          primal_first ? newtonDual(c, retry, limit) : newtonPrimal(c, retry, limit);
+      c = Select(hn::And(retry, betterThanUnconverged(warm, c)), warm, c);
+      retry = stillGoing(retry, c, limit);
+      if (!hn::AllFalse(d_, retry)) {
+        const Candidate<D> fresh =
+            primal_first ? newtonDual(start, retry, limit) : newtonPrimal(start, retry, limit);
+        c = Select(hn::And(retry, betterThanUnconverged(fresh, c)), fresh, c);
+      }
+    }
     *converged = hn::And(lanes, hn::Le(c.error, tolerance_));
     return c;
   }
@@ -295,6 +310,23 @@ class LaneSolver {
 
   M stillGoing(M lanes, const Candidate<D>& c, V limit) const {
     return hn::And(lanes, hn::And(hn::Gt(c.error, tolerance_), hn::Lt(iterations_, limit)));
+  }
+
+  /// ExactSolver::isBetter(a, b) where b has not converged: a has, or its error is smaller.
+  M betterThanUnconverged(const Candidate<D>& a, const Candidate<D>& b) const {
+    return hn::Or(hn::Le(a.error, tolerance_), hn::Lt(a.error, b.error));
+  }
+
+  /// The end of ExactSolver::newtonDual: the primal's view of the dual's point (its gradient
+  /// and Hessian, for primal iterations that follow), keeping the dual's error where it is
+  /// the smaller.
+  Candidate<D> asPrimal(const Candidate<D>& c) const {
+    Candidate<D> out = candidateOnRay(c.point);
+    const M keep_dual = hn::Gt(out.error, c.error);
+    out.point = Select(keep_dual, c.point, out.point);
+    out.normal = Select(keep_dual, c.normal, out.normal);
+    out.error = hn::IfThenElse(keep_dual, c.error, out.error);
+    return out;
   }
 
   /// ExactSolver::stayInOctant.
