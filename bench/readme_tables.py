@@ -88,12 +88,17 @@ def ratios(rows):
 
 
 def scaling(path):
-    print("\n| cloud | scalar | vertices | path | threads | BVH ms | query ms | ns / vertex | result |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("\n| cloud | scalar | vertices | path | threads | BVH ms | query ms | ns / vertex | result "
+          "| × single | SIMD |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     with open(path, newline="") as f:
         for r in csv.DictReader(f):
+            ratio = float(r["vs_single"])
+            share = float(r["simd_share"])
             print(f"| {r['cloud']} | {r['scalar']} | {r['vertices']} | {r['path']} | {r['threads']} | "
-                  f"{float(r['setup_ms']):.1f} | {float(r['total_ms']):.2f} | {float(r['ns_per_vertex']):.0f} | {float(r['result']):.6g} |")
+                  f"{float(r['setup_ms']):.1f} | {float(r['total_ms']):.2f} | {float(r['ns_per_vertex']):.0f} | "
+                  f"{float(r['result']):.6g} | {f'{ratio:.2f}' if ratio > 0 else ''} | "
+                  f"{f'{100 * share:.1f} %' if share >= 0 else ''} |")
 
 
 def main():

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "fcl_superellipsoid/batch_distance.h"
+
 namespace fcl_superellipsoid {
 namespace bench {
 namespace {
@@ -332,7 +334,8 @@ std::string machineDescription() {
       break;
     }
   }
-  return model + ", " + std::to_string(std::thread::hardware_concurrency()) + " hardware threads";
+  return model + ", " + std::to_string(std::thread::hardware_concurrency()) +
+         " hardware threads, SIMD " + simdInstructionSet();
 }
 
 }  // namespace bench

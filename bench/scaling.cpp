@@ -7,6 +7,7 @@
 #include <functional>
 #include <random>
 #include <thread>
+#include <tuple>
 
 #include "fcl_superellipsoid/batch_distance.h"
 #include "fcl_superellipsoid/fcl_integration.h"
@@ -37,9 +38,18 @@ double medianMs(int repetitions, const std::function<double()>& f, double& value
 }
 
 void printRow(const ScalingRow& r) {
-  std::printf("%-6s %-7s %9d  %-24s %7d %9.1f %12.3f %11.1f %14.6g\n", r.cloud.c_str(),
+  std::printf("%-6s %-7s %9d  %-28s %7d %9.1f %12.3f %11.1f %14.6g", r.cloud.c_str(),
               r.scalar.c_str(), r.vertices, r.path.c_str(), r.threads, r.setup_ms, r.total_ms,
               r.ns_per_vertex, r.result);
+  if (r.vs_single > 0) std::printf(" %9.2f", r.vs_single);
+  if (r.simd_share >= 0) std::printf(" %9.1f %%", 100 * r.simd_share);
+  std::printf("\n");
+}
+
+/// Share of the vertices the batched call solved that the SIMD solver answered.
+double simdShare(const BatchStatistics& s) {
+  const std::size_t solved = s.simd + s.scalar;
+  return solved == 0 ? 0.0 : double(s.simd) / double(solved);
 }
 
 /// The threads a batched call with BatchOptions::threads = `threads` really uses for n vertices.
@@ -51,9 +61,11 @@ int threadsUsed(int threads, int n) {
 /// Median time of verticesWithinMargin (shape at the origin); value = the count found.
 template <typename S>
 double withinMarginMs(const Superellipsoid<S>& shape, const Eigen::Ref<const Matrix3X<S>>& p_WV,
-                      S margin, int threads, int repetitions, double& value) {
+                      S margin, int threads, int repetitions, double& value,
+                      BatchStatistics& statistics) {
   BatchOptions<S> options;
   options.threads = threads;
+  options.statistics = &statistics;
   return medianMs(
       repetitions,
       [&] {
@@ -69,8 +81,11 @@ void sceneRows(const std::shared_ptr<Superellipsoidd>& shape, int n, int repetit
                std::vector<ScalingRow>& rows) {
   TriangleMesh<double> cloud;
   cloud.vertices = makeSceneCloud(*shape, n, 0.01, 99);
-  auto add = [&](const char* path, int threads, double setup_ms, double ms, double value) {
-    rows.push_back({"scene", "double", n, path, threads, setup_ms, ms, 1e6 * ms / n, value});
+  double single_ms = 0;
+  auto add = [&](const char* path, int threads, double setup_ms, double ms, double value,
+                 double simd_share = -1) {
+    rows.push_back({"scene", "double", n, path, threads, setup_ms, ms, 1e6 * ms / n, value,
+                    single_ms > 0 ? single_ms / ms : 0, simd_share});
     printRow(rows.back());
   };
   double value = 0;
@@ -84,6 +99,7 @@ void sceneRows(const std::shared_ptr<Superellipsoidd>& shape, int n, int repetit
       },
       value);
   add("single queries (min)", 1, 0, ms, value);
+  single_ms = ms;
 
   const Clock::time_point start = Clock::now();
   const auto model = makeBVHModel<fcl::OBBRSSd>(cloud);
@@ -108,8 +124,9 @@ void sceneRows(const std::shared_ptr<Superellipsoidd>& shape, int n, int repetit
 
   const Eigen::Map<const Matrix3X<double>> p_WV(cloud.vertices[0].data(), 3, n);
   for (int threads : {1, 0}) {
-    ms = withinMarginMs<double>(*shape, p_WV, 0.0, threads, repetitions, value);
-    add("batch within margin 0", threadsUsed(threads, n), 0, ms, value);
+    BatchStatistics statistics;
+    ms = withinMarginMs<double>(*shape, p_WV, 0.0, threads, repetitions, value, statistics);
+    add("batch within margin 0", threadsUsed(threads, n), 0, ms, value, simdShare(statistics));
   }
 }
 
@@ -127,8 +144,10 @@ void batchRows(const Superellipsoid<S>& shape, const char* kind, int n, int repe
     p_WV.col(i) = p + t * shape.normal(p);
   }
   const char* scalar = std::is_same<S, float>::value ? "float" : "double";
-  auto add = [&](const char* path, int threads, double ms, double value) {
-    rows.push_back({kind, scalar, n, path, threads, 0, ms, 1e6 * ms / n, value});
+  double single_ms = 0;
+  auto add = [&](const char* path, int threads, double ms, double value, double simd_share = -1) {
+    rows.push_back({kind, scalar, n, path, threads, 0, ms, 1e6 * ms / n, value,
+                    single_ms > 0 ? single_ms / ms : 0, simd_share});
     printRow(rows.back());
   };
   const fcl::Transform3<S> X_WS = fcl::Transform3<S>::Identity();
@@ -143,10 +162,17 @@ void batchRows(const Superellipsoid<S>& shape, const char* kind, int n, int repe
       },
       value);
   add("single queries (sum)", 1, ms, value);
+  single_ms = ms;
   BatchDistanceResult<S> batch;
-  for (int threads : {1, 0}) {
+  BatchStatistics statistics;
+  // The batched per-vertex query on the scalar path (one thread), then on SIMD lanes.
+  for (const auto& [vectorize, threads, path] :
+       {std::tuple{false, 1, "batch distance scalar (sum)"},
+        std::tuple{true, 1, "batch distance (sum)"}, std::tuple{true, 0, "batch distance (sum)"}}) {
     BatchOptions<S> options;
     options.threads = threads;
+    options.vectorize = vectorize;
+    options.statistics = &statistics;
     ms = medianMs(
         repetitions,
         [&] {
@@ -154,11 +180,12 @@ void batchRows(const Superellipsoid<S>& shape, const char* kind, int n, int repe
           return double(batch.distance.template cast<double>().sum());
         },
         value);
-    add("batch distance (sum)", threadsUsed(threads, n), ms, value);
+    add(path, threadsUsed(threads, n), ms, value, simdShare(statistics));
   }
   for (int threads : {1, 0}) {
-    ms = withinMarginMs<S>(shape, p_WV, S(0.05) * shape.size(), threads, repetitions, value);
-    add("batch within 0.05 (count)", threadsUsed(threads, n), ms, value);
+    ms = withinMarginMs<S>(shape, p_WV, S(0.05) * shape.size(), threads, repetitions, value,
+                           statistics);
+    add("batch within 0.05 (count)", threadsUsed(threads, n), ms, value, simdShare(statistics));
   }
   // A simulation step: the previous step's nearest points (vertices 0.001 × size away) as
   // warm starts.
@@ -171,6 +198,7 @@ void batchRows(const Superellipsoid<S>& shape, const char* kind, int n, int repe
   BatchOptions<S> warm;
   warm.threads = 1;
   warm.warm_start_W = &previous.nearest_point;
+  warm.statistics = &statistics;
   ms = medianMs(
       repetitions,
       [&] {
@@ -178,7 +206,7 @@ void batchRows(const Superellipsoid<S>& shape, const char* kind, int n, int repe
         return double(batch.distance.template cast<double>().sum());
       },
       value);
-  add("batch distance warm (sum)", 1, ms, value);
+  add("batch distance warm (sum)", 1, ms, value, simdShare(statistics));
 }
 
 }  // namespace
@@ -192,10 +220,14 @@ std::vector<ScalingRow> runScaling(const std::vector<int>& sizes, int repetition
       "\nScaling: point clouds around the cloth-scene shape (3.5, 3, 2; 0.4, 0.3), Exact "
       "solver, median of %d.\nscene: 1 %% of the vertices within +-0.05 x size of the "
       "surface, the rest in a cube of side 20 x size;\nnear: all within +-0.05 x size; "
-      "far: all 5 to 15 x size away. threads: those a call really used (of %u).\n",
-      repetitions, std::thread::hardware_concurrency());
-  std::printf("%-6s %-7s %9s  %-24s %7s %9s %12s %11s %14s\n", "cloud", "scalar", "vertices",
-              "path", "threads", "BVH [ms]", "query [ms]", "ns/vertex", "result");
+      "far: all 5 to 15 x size away. threads: those a call really used (of %u). Batched paths "
+      "run on SIMD lanes\n(%s) unless named scalar. x single: speed-up over single queries on "
+      "the same cloud, this run.\nSIMD: share of the solved vertices the SIMD solver answered "
+      "(the rest it handed to the scalar solver).\n",
+      repetitions, std::thread::hardware_concurrency(), simdInstructionSet());
+  std::printf("%-6s %-7s %9s  %-28s %7s %9s %12s %11s %14s %9s %11s\n", "cloud", "scalar",
+              "vertices", "path", "threads", "BVH [ms]", "query [ms]", "ns/vertex", "result",
+              "x single", "SIMD");
   for (const int n : sizes) sceneRows(shape, n, repetitions, rows);
   for (const char* kind : {"near", "far"}) {
     for (const int n : sizes) {
@@ -209,11 +241,12 @@ std::vector<ScalingRow> runScaling(const std::vector<int>& sizes, int repetition
       "would.\n");
   if (!csv_path.empty()) {
     std::ofstream csv(csv_path);
-    csv << "cloud,scalar,vertices,path,threads,setup_ms,total_ms,ns_per_vertex,result\n";
+    csv << "cloud,scalar,vertices,path,threads,setup_ms,total_ms,ns_per_vertex,result,"
+           "vs_single,simd_share\n";
     for (const ScalingRow& r : rows) {
       csv << r.cloud << ',' << r.scalar << ',' << r.vertices << ",\"" << r.path << "\","
           << r.threads << ',' << r.setup_ms << ',' << r.total_ms << ',' << r.ns_per_vertex << ','
-          << r.result << '\n';
+          << r.result << ',' << r.vs_single << ',' << r.simd_share << '\n';
     }
   }
   return rows;

@@ -16,7 +16,9 @@ struct ScalingRow {
   double setup_ms;  // building the point cloud's BVH (front end only)
   double total_ms;  // the query itself (median of repetitions)
   double ns_per_vertex;
-  double result;  // min distance or vertex count: paths on one cloud must agree
+  double result;      // min distance or vertex count: paths on one cloud must agree
+  double vs_single;   // speed-up over single queries on the same cloud in the same run (0: none)
+  double simd_share;  // batched rows: share of the solved vertices the SIMD solver answered
 };
 
 /// Time per vertex and in total for point clouds of each size, around the cloth-scene shape:
@@ -24,7 +26,8 @@ struct ScalingRow {
 ///    vertex through the Exact solver one at a time, the FCL front end (BVH culling) for
 ///    distance and collision, and the batched within-margin query;
 ///  - all-near and all-far clouds, float and double: single queries against the batched
-///    per-vertex and within-margin queries, on one thread and on all.
+///    per-vertex query on the scalar path and on SIMD lanes (BatchOptions::vectorize), on one
+///    thread and on all, the within-margin query, and warm starts.
 /// Prints tables; writes CSV to csv_path unless empty.
 std::vector<ScalingRow> runScaling(const std::vector<int>& sizes, int repetitions,
                                    const std::string& csv_path);

@@ -110,20 +110,22 @@ HWY_INLINE PNorm2Lanes<D> PNorm2WithPowers(D d, hn::Vec<D> a, hn::Vec<D> b, hn::
   const hn::Vec<D> zero = hn::Zero(d), one = hn::Set(d, 1);
   const hn::Vec<D> m = hn::Max(a, b), lo = hn::Min(a, b);
   const auto m_positive = hn::Gt(m, zero), lo_positive = hn::Gt(lo, zero);
-  const hn::Vec<D> m_safe = hn::IfThenElse(m_positive, m, one);
-  const hn::Vec<D> lo_safe = hn::IfThenElse(lo_positive, lo, one);
-  const hn::Vec<D> q = Pow(d, hn::Div(lo, m_safe), p);
+  const hn::Vec<D> ratio = hn::Div(lo, hn::IfThenElse(m_positive, m, one));  // lo/m ∈ [0, 1]
+  const hn::Vec<D> q = Pow(d, ratio, p);
   const hn::Vec<D> one_plus_q = hn::Add(one, q);
-  // (1 + q)^(1/p) through log1p: q may be far below one ulp of 1.
-  const hn::Vec<D> n = hn::Mul(m, hn::Exp(d, hn::Mul(inv_p, hn::Log1p(d, q))));
-  const hn::Vec<D> pow_m = hn::Div(n, hn::Mul(m_safe, one_plus_q));
-  hn::Vec<D> pow_lo = hn::Div(hn::Mul(q, n), hn::Mul(lo_safe, one_plus_q));
+  // w = (1 + q)^(1/p), N = m·w. log(1 + q) rounds 1 + q first; its absolute error of an ulp
+  // moves N by a relative ulp/p, so log1p is not needed.
+  const hn::Vec<D> w = hn::Exp(d, hn::Mul(inv_p, hn::Log(d, one_plus_q)));
+  const hn::Vec<D> n = hn::Mul(m, w);
+  // (m/N)^(p−1) = N/(m·(1 + q)) = w/(1 + q);  (lo/N)^(p−1) = (lo/m)^(p−1)·(m/N)^(p−1), with
+  // (lo/m)^(p−1) = q/ratio, or a power of its own where q is subnormal (nested_norm.h).
+  const hn::Vec<D> pow_m = hn::Div(w, one_plus_q);
+  hn::Vec<D> ratio_pow = hn::Div(q, hn::IfThenElse(lo_positive, ratio, one));
   const auto subnormal = hn::And(lo_positive, hn::Lt(q, hn::Set(d, std::numeric_limits<T>::min())));
   if (!hn::AllFalse(d, subnormal)) {
-    const hn::Vec<D> n_safe = hn::IfThenElse(m_positive, n, one);
-    pow_lo = hn::IfThenElse(subnormal, Pow(d, hn::Div(lo, n_safe), p_minus_1), pow_lo);
+    ratio_pow = hn::IfThenElse(subnormal, Pow(d, ratio, p_minus_1), ratio_pow);
   }
-  pow_lo = hn::IfThenElseZero(lo_positive, pow_lo);
+  const hn::Vec<D> pow_lo = hn::IfThenElseZero(lo_positive, hn::Mul(ratio_pow, pow_m));
   const auto a_larger = hn::Ge(a, b);
   return {n, hn::IfThenElseZero(m_positive, hn::IfThenElse(a_larger, pow_m, pow_lo)),
           hn::IfThenElseZero(m_positive, hn::IfThenElse(a_larger, pow_lo, pow_m))};
@@ -174,11 +176,10 @@ HWY_INLINE NormEval<D> Evaluate(D d, const NormLanes<D>& c, const Vec3<D>& w) {
   NormEval<D> out;
   out.value = level2.norm;
   const auto value_positive = hn::Gt(out.value, zero), r_positive = hn::Gt(r, zero);
-  const V value_safe = hn::IfThenElse(value_positive, out.value, one);
-  const V r_safe = hn::IfThenElse(r_positive, r, one);
-  const V t1 = hn::IfThenElseZero(r_positive, hn::Div(u0, r_safe));
-  const V t2 = hn::IfThenElseZero(r_positive, hn::Div(u1, r_safe));
-  const V tr = hn::Div(r, value_safe), t3 = hn::Div(u2, value_safe);
+  const V inv_value = hn::Div(one, hn::IfThenElse(value_positive, out.value, one));
+  const V inv_r = hn::IfThenElseZero(r_positive, hn::Div(one, hn::IfThenElse(r_positive, r, one)));
+  const V t1 = hn::Mul(u0, inv_r), t2 = hn::Mul(u1, inv_r);
+  const V tr = hn::Mul(r, inv_value), t3 = hn::Mul(u2, inv_value);
   const V r1 = level1.pow_a, r2 = level1.pow_b, g_r = level2.pow_a, g_3 = level2.pow_b;
   out.gradient = {hn::IfThenElseZero(value_positive, hn::Mul(hn::Mul(g_r, r1), c.s0)),
                   hn::IfThenElseZero(value_positive, hn::Mul(hn::Mul(g_r, r2), c.s1)),
@@ -187,11 +188,11 @@ HWY_INLINE NormEval<D> Evaluate(D d, const NormLanes<D>& c, const Vec3<D>& w) {
   // t^(p−2) = t^(p−1)/t with a floor on t (nested_norm.h).
   const V floor = hn::Set(d, std::sqrt(std::numeric_limits<T>::min()));
   auto pow_minus_2 = [&](V t, V pow_pm1) { return hn::Div(pow_pm1, hn::Max(t, floor)); };
-  const V c1 = hn::Div(c.p1_m1, r_safe);
+  const V c1 = hn::Mul(c.p1_m1, inv_r);
   const V r11 = hn::Mul(hn::Mul(c1, pow_minus_2(t1, r1)), hn::Mul(t2, r2));
   const V r22 = hn::Mul(hn::Mul(c1, pow_minus_2(t2, r2)), hn::Mul(t1, r1));
   const V r12 = hn::Neg(hn::Mul(hn::Mul(c1, r1), r2));
-  const V c2 = hn::Div(c.p2_m1, value_safe);
+  const V c2 = hn::Mul(c.p2_m1, inv_value);
   const V g_rr = hn::Mul(hn::Mul(c2, pow_minus_2(tr, g_r)), hn::Mul(t3, g_3));
   const V g_r3 = hn::Neg(hn::Mul(hn::Mul(c2, g_r), g_3));
   const auto both = hn::And(value_positive, r_positive);
