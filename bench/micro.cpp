@@ -1,13 +1,15 @@
 // Google Benchmark micro-benchmarks: one query per iteration, cycling through 1,024 points
-// near the surface, for each method and shape class. The full comparison is fse_bench; this
-// target is for profiling one method and for tracking regressions with Google Benchmark's
-// tooling (--benchmark_filter, --benchmark_format=json, compare.py).
+// near the surface, for each method and shape class; and the batched Exact query over the same
+// 1,024 points per iteration, on SIMD lanes and on the scalar path. The full comparison is
+// fse_bench; this target is for profiling one method and for tracking regressions with Google
+// Benchmark's tooling (--benchmark_filter, --benchmark_format=json, compare.py).
 
 #include <benchmark/benchmark.h>
 
 #include <functional>
 #include <map>
 
+#include "fcl_superellipsoid/batch_distance.h"
 #include "methods.h"
 
 namespace fcl_superellipsoid {
@@ -39,6 +41,24 @@ void runQueries(benchmark::State& state, const std::string& shape_class,
   state.SetItemsProcessed(state.iterations());
 }
 
+/// The batched Exact query (1e-12, one thread) over the same 1,024 points per iteration, on
+/// SIMD lanes or on the scalar path: its items per second are vertices per second, so the time
+/// per vertex compares directly with the single-query rows above.
+void runBatch(benchmark::State& state, const std::string& shape_class, bool vectorize) {
+  const Superellipsoid<double> shape = shapeClass(shape_class).make();
+  const PointSet points = makePointSet(shapeClass(shape_class), Side::kNear, 1024, 1, 7);
+  const Eigen::Map<const Matrix3X<double>> p_WV(points.points[0].data(), 3, 1024);
+  BatchOptions<double> options;
+  options.threads = 1;
+  options.vectorize = vectorize;
+  BatchDistanceResult<double> result;
+  for (auto _ : state) {
+    batchDistance(shape, fcl::Transform3d::Identity(), p_WV, result, options);
+    benchmark::DoNotOptimize(result.distance.data());
+  }
+  state.SetItemsProcessed(state.iterations() * 1024);
+}
+
 void registerAll() {
   const std::vector<
       std::pair<std::string, std::function<std::unique_ptr<Method>(const BenchShape&)>>>
@@ -62,6 +82,15 @@ void registerAll() {
                                    [make = make, shape_class](benchmark::State& state) {
                                      runQueries(state, shape_class, make);
                                    });
+    }
+  }
+  for (const bool vectorize : {true, false}) {
+    for (const char* shape_class : {"round", "sharp", "pinched", "cloth"}) {
+      const std::string name = std::string(vectorize ? "BatchSimd" : "BatchScalar") + "/" +
+                               simdInstructionSet() + "/" + shape_class;
+      benchmark::RegisterBenchmark(name.c_str(), [vectorize, shape_class](benchmark::State& state) {
+        runBatch(state, shape_class, vectorize);
+      });
     }
   }
 }
