@@ -278,6 +278,17 @@ std::vector<VertexContact<S>> verticesWithinMargin(
     const Superellipsoid<S>& shape, const detail::NonDeduced<fcl::Transform3<S>>& X_WS,
     const detail::NonDeduced<Eigen::Ref<const Matrix3X<S>>>& p_WV, detail::NonDeduced<S> margin,
     const detail::NonDeduced<BatchOptions<S>>& options) {
+  std::vector<VertexContact<S>> contacts;
+  verticesWithinMargin<S>(shape, X_WS, p_WV, margin, contacts, options);
+  return contacts;
+}
+
+template <typename S>
+void verticesWithinMargin(const Superellipsoid<S>& shape,
+                          const detail::NonDeduced<fcl::Transform3<S>>& X_WS,
+                          const detail::NonDeduced<Eigen::Ref<const Matrix3X<S>>>& p_WV,
+                          detail::NonDeduced<S> margin, std::vector<VertexContact<S>>& contacts,
+                          const detail::NonDeduced<BatchOptions<S>>& options) {
   if (!std::isfinite(margin)) {
     std::ostringstream msg;
     msg << "verticesWithinMargin: the margin must be finite, got " << margin;
@@ -299,9 +310,11 @@ std::vector<VertexContact<S>> verticesWithinMargin(
         });
   });
   solver.reportStatistics();
-  std::vector<VertexContact<S>> contacts;
-  for (auto& chunk : per_chunk) contacts.insert(contacts.end(), chunk.begin(), chunk.end());
-  return contacts;
+  std::size_t total = 0;
+  for (const auto& chunk : per_chunk) total += chunk.size();
+  contacts.clear();
+  contacts.reserve(total);
+  for (const auto& chunk : per_chunk) contacts.insert(contacts.end(), chunk.begin(), chunk.end());
 }
 
 #define FSE_INSTANTIATE_BATCH(S)                                                                 \
@@ -310,7 +323,10 @@ std::vector<VertexContact<S>> verticesWithinMargin(
                               const BatchOptions<S>&);                                           \
   template std::vector<VertexContact<S>> verticesWithinMargin(                                   \
       const Superellipsoid<S>&, const fcl::Transform3<S>&, const Eigen::Ref<const Matrix3X<S>>&, \
-      S, const BatchOptions<S>&);
+      S, const BatchOptions<S>&);                                                                \
+  template void verticesWithinMargin(const Superellipsoid<S>&, const fcl::Transform3<S>&,        \
+                                     const Eigen::Ref<const Matrix3X<S>>&, S,                    \
+                                     std::vector<VertexContact<S>>&, const BatchOptions<S>&);
 FSE_INSTANTIATE_BATCH(float)
 FSE_INSTANTIATE_BATCH(double)
 

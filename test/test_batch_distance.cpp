@@ -267,6 +267,15 @@ TYPED_TEST(BatchDistanceTest, CompactsExactlyTheVerticesWithinTheMargin) {
             }
           }
           EXPECT_EQ(next, contacts.size()) << "contacts out of index order or duplicated";
+          // Into a caller's vector (cleared first): the same contacts.
+          std::vector<VertexContact<S>> reused(3, VertexContact<S>{-1, S(0), {}, {}});
+          verticesWithinMargin(shape, X_WS, p_WV, margin, reused, options);
+          ASSERT_EQ(reused.size(), contacts.size());
+          for (std::size_t k = 0; k < reused.size(); ++k) {
+            EXPECT_EQ(reused[k].index, contacts[k].index);
+            EXPECT_EQ(reused[k].distance, contacts[k].distance);
+            EXPECT_EQ(reused[k].nearest_point, contacts[k].nearest_point);
+          }
         }
       }
     }
