@@ -101,6 +101,35 @@ def scaling(path):
                   f"{f'{100 * share:.1f} %' if share >= 0 else ''} |")
 
 
+def batch_summary(path):
+    """Per-vertex cost of single queries and the batched query (SIMD, 1 and all threads) on the
+    near and far clouds, by size, with the speed-up over single queries from the same run."""
+    cost = defaultdict(dict)
+    sizes = []
+    with open(path, newline="") as f:
+        for r in csv.DictReader(f):
+            if r["cloud"] not in ("near", "far"):
+                continue
+            n = int(r["vertices"])
+            if n not in sizes:
+                sizes.append(n)
+            key = (r["cloud"], r["scalar"], r["path"], int(r["threads"]))
+            cost[key][n] = float(r["ns_per_vertex"])
+    print("\n| cloud | scalar | path | " + " | ".join(f"{n:,} v" for n in sizes) + " |")
+    print("|---" * (3 + len(sizes)) + "|")
+    for cloud in ("near", "far"):
+        for scalar in ("double", "float"):
+            single = cost[(cloud, scalar, "single queries (sum)", 1)]
+            print(f"| {cloud} | {scalar} | single queries | "
+                  + " | ".join(f"{single[n]:.0f} ns" for n in sizes) + " |")
+            for threads in (1, 2):
+                row = cost.get((cloud, scalar, "batch distance (sum)", threads), {})
+                cells = [f"{row[n]:.0f} ns ({single[n] / row[n]:.1f}×)" if n in row else "—"
+                         for n in sizes]
+                print(f"| {cloud} | {scalar} | batch, SIMD, {threads} thread{'s' if threads > 1 else ''} | "
+                      + " | ".join(cells) + " |")
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
@@ -117,6 +146,7 @@ def main():
         ratios(rows)
     if os.path.exists(os.path.join(out, "scaling.csv")):
         scaling(os.path.join(out, "scaling.csv"))
+        batch_summary(os.path.join(out, "scaling.csv"))
 
 
 if __name__ == "__main__":

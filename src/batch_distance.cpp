@@ -41,12 +41,18 @@ void checkVertices(const char* function, const Eigen::Ref<const Matrix3X<S>>& p_
   }
 }
 
+/// True where forEachChunk runs the chunks in order on the calling thread.
+template <typename S>
+bool runsSerially(Eigen::Index n, const BatchOptions<S>& options) {
+  return options.threads == 1 || n < options.min_parallel_vertices;
+}
+
 /// Runs body(first, last) over [0, n) in kChunk pieces, threaded when it pays.
 template <typename S, typename Body>
 void forEachChunk(Eigen::Index n, const BatchOptions<S>& options, const Body& body) {
   const Eigen::Index chunks = (n + kChunk - 1) / kChunk;
   auto run = [&](Eigen::Index c) { body(c * kChunk, std::min(n, (c + 1) * kChunk)); };
-  if (options.threads == 1 || n < options.min_parallel_vertices) {
+  if (runsSerially(n, options)) {
     for (Eigen::Index c = 0; c < chunks; ++c) run(c);
     return;
   }
@@ -298,9 +304,13 @@ void verticesWithinMargin(const Superellipsoid<S>& shape,
   const Eigen::Index n = p_WV.cols();
   const Vector3<S>& a = shape.radii();
   const S cull = std::max(margin, S(0));  // (margin < 0: inside the box only)
-  std::vector<std::vector<VertexContact<S>>> per_chunk((n + kChunk - 1) / kChunk);
+  // In order on this thread, contacts go straight into the caller's vector (its capacity is
+  // reused); on threads, into one vector per chunk, concatenated in chunk order.
+  const bool serial = runsSerially(n, options);
+  std::vector<std::vector<VertexContact<S>>> per_chunk(serial ? 0 : (n + kChunk - 1) / kChunk);
+  contacts.clear();
   forEachChunk(n, options, [&](Eigen::Index first, Eigen::Index last) {
-    std::vector<VertexContact<S>>& out = per_chunk[first / kChunk];
+    std::vector<VertexContact<S>>& out = serial ? contacts : per_chunk[first / kChunk];
     solver.solveChunk(
         first, last,
         // The shape lies in its box [−a, a]: the distance to the box is a lower bound.
@@ -310,9 +320,9 @@ void verticesWithinMargin(const Superellipsoid<S>& shape,
         });
   });
   solver.reportStatistics();
+  if (serial) return;
   std::size_t total = 0;
   for (const auto& chunk : per_chunk) total += chunk.size();
-  contacts.clear();
   contacts.reserve(total);
   for (const auto& chunk : per_chunk) contacts.insert(contacts.end(), chunk.begin(), chunk.end());
 }
