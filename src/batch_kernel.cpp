@@ -377,9 +377,26 @@ class LaneSolver {
     return hn::Mul(m, hn::Sqrt(hn::MulAdd(sa, sa, hn::Mul(sb, sb))));
   }
 
+  /// The step halving of both formulations (ExactSolver::tryStep and the loop in newtonDual):
+  /// on the lanes of `lanes` whose step is finite, attempt(step, trying) tries step, step/2, …,
+  /// step/16 until it improves, applying the trial on the lanes it accepts and returning them.
+  /// Returns the lanes that improved.
+  template <typename Attempt>
+  M halveUntilBetter(M lanes, Vec3<D> step, const Attempt& attempt) const {
+    M trying = hn::And(lanes, AllFinite(step));
+    M improved = hn::MaskFromVec(hn::Zero(d_));
+    for (int halving = 0; halving < 5 && !hn::AllFalse(d_, trying); ++halving) {
+      const M accepted = attempt(step, trying);
+      improved = hn::Or(improved, accepted);
+      trying = hn::AndNot(accepted, trying);
+      step = Times(hn::Set(d_, T(0.5)), step);
+    }
+    return improved;
+  }
+
   /// ExactSolver::newtonPrimal with its step halving (tryStep).
   Candidate<D> newtonPrimal(Candidate<D> c, M lanes, V limit) {
-    const V one = hn::Set(d_, 1), half = hn::Set(d_, T(0.5));
+    const V one = hn::Set(d_, 1);
     M active = stillGoing(lanes, c, limit);
     while (!hn::AllFalse(d_, active)) {
       iterations_ = hn::Add(iterations_, hn::IfThenElseZero(active, one));
@@ -389,19 +406,16 @@ class LaneSolver {
       Sym3<D> a = {hn::MulAdd(mu, c.hessian.xx, one), hn::Mul(mu, c.hessian.xy),
                    hn::Mul(mu, c.hessian.xz),         hn::MulAdd(mu, c.hessian.yy, one),
                    hn::Mul(mu, c.hessian.yz),         hn::MulAdd(mu, c.hessian.zz, one)};
-      Vec3<D> step = tangentStep(a, c.normal, residual, one);
-      M trying = hn::And(active, AllFinite(step));
-      M improved = hn::MaskFromVec(hn::Zero(d_));
-      for (int halving = 0; halving < 5 && !hn::AllFalse(d_, trying); ++halving) {
-        const Vec3<D> p = stayInOctant(c.point, Plus(c.point, step));
+      const Vec3<D> step = tangentStep(a, c.normal, residual, one);
+      // The trial point is re-projected radially onto the surface (candidateOnRay).
+      const M improved = halveUntilBetter(active, step, [&](const Vec3<D>& s, M trying) {
+        const Vec3<D> p = stayInOctant(c.point, Plus(c.point, s));
         const M valid = hn::And(AllFinite(p), hn::Gt(Dot(p, p), hn::Zero(d_)));
         const Candidate<D> trial = candidateOnRay(p);
         const M accept = hn::And(hn::And(trying, valid), hn::Lt(trial.error, c.error));
         c = Select(accept, trial, c);
-        improved = hn::Or(improved, accept);
-        trying = hn::AndNot(accept, trying);
-        step = Times(half, step);
-      }
+        return accept;
+      });
       active = stillGoing(improved, c, limit);
     }
     return c;
@@ -409,7 +423,7 @@ class LaneSolver {
 
   /// ExactSolver::newtonDual: the iterate is the unit normal n, its surface point ∇h(n).
   Candidate<D> newtonDual(Candidate<D> c, M lanes, V limit) {
-    const V one = hn::Set(d_, 1), half = hn::Set(d_, T(0.5));
+    const V one = hn::Set(d_, 1);
     Vec3<D> n = c.normal;
     NormEval<D> e = Evaluate(d_, dual_, n);
     M active = stillGoing(lanes, c, limit);
@@ -421,11 +435,10 @@ class LaneSolver {
       const Sym3<D> a = {
           hn::Add(e.hessian.xx, distance), e.hessian.xy, e.hessian.xz,
           hn::Add(e.hessian.yy, distance), e.hessian.yz, hn::Add(e.hessian.zz, distance)};
-      Vec3<D> step = tangentStep(a, n, residual, hn::Abs(distance));
-      M trying = hn::And(active, AllFinite(step));
-      M improved = hn::MaskFromVec(hn::Zero(d_));
-      for (int halving = 0; halving < 5 && !hn::AllFalse(d_, trying); ++halving) {
-        Vec3<D> trial_n = stayInOctant(n, Plus(n, step));
+      const Vec3<D> step = tangentStep(a, n, residual, hn::Abs(distance));
+      // The trial normal is re-normalised; its surface point is ∇h of it.
+      const M improved = halveUntilBetter(active, step, [&](const Vec3<D>& s, M trying) {
+        Vec3<D> trial_n = stayInOctant(n, Plus(n, s));
         trial_n = Times(hn::Div(one, hn::Sqrt(Dot(trial_n, trial_n))), trial_n);
         const NormEval<D> trial = Evaluate(d_, dual_, trial_n);
         const V error = errorAt(trial.gradient, trial_n);
@@ -435,10 +448,8 @@ class LaneSolver {
         c.error = hn::IfThenElse(accept, error, c.error);
         n = Select(accept, trial_n, n);
         e = Select(accept, trial, e);
-        improved = hn::Or(improved, accept);
-        trying = hn::AndNot(accept, trying);
-        step = Times(half, step);
-      }
+        return accept;
+      });
       active = stillGoing(improved, c, limit);
     }
     return c;

@@ -91,21 +91,13 @@ TYPED_TEST(BatchDistanceTest, ScalarPathIsBitwiseSingleQueries) {
   }
 }
 
-/// The Exact solver's accuracy target relative to the size (as in test_point_distance.cpp).
-template <typename S>
-double exactTarget(double e1, double e2) {
-  const bool extreme = std::min(e1, e2) < 0.1 || std::max(e1, e2) > 1.9;
-  if (std::is_same<S, float>::value) return extreme ? 1e-3 : 1e-4;
-  return extreme ? 1e-6 : 1e-9;
-}
-
 /// The tolerance to which two converged Exact answers for one vertex agree: the solver's
 /// target (both stop once paper Eq. 7's error is below it) plus the rounding floor of the
 /// vertex's distance from the centre.
 template <typename S>
 S agreement(const Superellipsoid<S>& shape, const Vector3<S>& p_WV,
             const fcl::Transform3<S>& X_WS) {
-  return S(exactTarget<S>(shape.eps1(), shape.eps2())) * shape.size() +
+  return S(test::exactTarget<S>(shape.eps1(), shape.eps2())) * shape.size() +
          S(8) * std::numeric_limits<S>::epsilon() *
              (p_WV.norm() + X_WS.translation().norm() + shape.size());
 }
@@ -355,7 +347,7 @@ TYPED_TEST(BatchDistanceTest, WarmStartsGiveTheSameAnswers) {
               verticesWithinMargin(shape, X_WS, p_WV, S(0.1) * shape.size(), options);
           std::size_t next = 0;
           for (Eigen::Index i = 0; i < n; ++i) {
-            const S tol = S(exactTarget<S>(e1, e2)) * shape.size() +
+            const S tol = S(test::exactTarget<S>(e1, e2)) * shape.size() +
                           S(8) * std::numeric_limits<S>::epsilon() * p_WV.col(i).norm();
             if (hints == &none) {  // no hint: the very same computation
               ASSERT_EQ(warm.distance[i], cold.distance[i]) << "vertex " << i;

@@ -11,16 +11,6 @@
 namespace fcl_superellipsoid {
 namespace {
 
-/// The Exact solver's accuracy target, relative to the shape's size: 1e-9 in double for
-/// ε ∈ [0.1, 1.9], 1e-6 at the ends of the range (0.02, 1.98); in float the same number of
-/// ulps-ish scaled to float (≈ 1e-4 and 1e-3).
-template <typename S>
-double exactTarget(double e1, double e2) {
-  const bool extreme = std::min(e1, e2) < 0.1 || std::max(e1, e2) > 1.9;
-  if (std::is_same<S, float>::value) return extreme ? 1e-3 : 1e-4;
-  return extreme ? 1e-6 : 1e-9;
-}
-
 template <typename S>
 Superellipsoid<S> makeShape(const std::array<double, 3>& a, double e1, double e2) {
   return Superellipsoid<S>(S(a[0]), S(a[1]), S(a[2]), S(e1), S(e2));
@@ -68,7 +58,7 @@ void checkOutsideByConstruction(const std::vector<std::array<double, 3>>& radii,
       for (double e2 : exponents) {
         const Superellipsoid<S> shape = makeShape<S>(a, e1, e2);
         SCOPED_TRACE(test::describe(shape));
-        const double size = shape.size(), target = exactTarget<S>(e1, e2);
+        const double size = shape.size(), target = test::exactTarget<S>(e1, e2);
         for (double offset : {1e-9, 1e-3, 0.05, 1.0, 1e6}) {
           const auto [eta, omega] = angles();
           const Vector3<S> p = shape.surfacePoint(S(eta), S(omega));
@@ -116,7 +106,7 @@ TYPED_TEST(PointDistanceTest, ExactMatchesReferenceInside) {
     const Superellipsoid<S> shape = makeShape<S>({c[0], c[1], c[2]}, c[3], c[4]);
     SCOPED_TRACE(test::describe(shape));
     const test::ReferenceDistance reference({c[0], c[1], c[2]}, c[3], c[4]);
-    const double size = shape.size(), target = exactTarget<S>(c[3], c[4]);
+    const double size = shape.size(), target = test::exactTarget<S>(c[3], c[4]);
     for (int k = 0; k < 12; ++k) {
       const auto [eta, omega] = angles();
       const Vector3<S> p = shape.surfacePoint(S(eta), S(omega));
@@ -164,7 +154,7 @@ TYPED_TEST(PointDistanceTest, ExactFindsTheNearestFaceDeepInCigars) {
     const Superellipsoid<S> shape = makeShape<S>(c.radii, c.e1, c.e2);
     SCOPED_TRACE(test::describe(shape));
     const Vector3<S> x(S(c.x[0]), S(c.x[1]), S(c.x[2]));
-    const double size = shape.size(), target = exactTarget<S>(c.e1, c.e2);
+    const double size = shape.size(), target = test::exactTarget<S>(c.e1, c.e2);
     const auto r = pointDistance(shape, x, options);
     expectInvariants(shape, x, r, options.max_iterations, target);
     const test::ReferenceDistance reference({c.radii[0], c.radii[1], c.radii[2]}, c.e1, c.e2);
@@ -183,7 +173,7 @@ TYPED_TEST(PointDistanceTest, SpecialPointsStayFiniteAndExact) {
       for (double e2 : test::exponentGrid()) {
         const Superellipsoid<S> shape = makeShape<S>(a, e1, e2);
         SCOPED_TRACE(test::describe(shape));
-        const double size = shape.size(), target = exactTarget<S>(e1, e2);
+        const double size = shape.size(), target = test::exactTarget<S>(e1, e2);
         const test::ReferenceDistance reference({a[0], a[1], a[2]}, e1, e2);
         // On each axis, outside: the tip is the nearest point (its normal is the axis).
         for (int i = 0; i < 3; ++i) {
@@ -247,7 +237,7 @@ TYPED_TEST(PointDistanceTest, SphereCentreIsNonUniqueButExact) {
   EXPECT_LT(r.distance, S(0));
   EXPECT_GT(r.distance, S(-0.7));
   const auto truth = test::ReferenceDistance({1, 1, 1}, 1.9, 1.9).query({0, 0, 0});
-  EXPECT_NEAR(double(r.distance), double(truth.distance), exactTarget<S>(1.9, 1.9));
+  EXPECT_NEAR(double(r.distance), double(truth.distance), test::exactTarget<S>(1.9, 1.9));
 }
 
 TYPED_TEST(PointDistanceTest, WorldFrameOverloadPosesTheAnswer) {
