@@ -200,6 +200,63 @@ TYPED_TEST(BatchDistanceTest, SimdAgreesOnRandomCloudsAndSolvesMostOfThem) {
   }
 }
 
+TYPED_TEST(BatchDistanceTest, HonoursTheOptionsOfSingleQueries) {
+  using S = TypeParam;
+  const Superellipsoid<S> shapes[] = {{S(3.5), S(3), S(2), S(0.4), S(0.3)},
+                                      {S(1), S(2), S(3), S(1.6), S(1.2)}};
+  for (const Superellipsoid<S>& shape : shapes) {
+    SCOPED_TRACE(test::describe(shape));
+    Matrix3X<S> cloud(3, 2 * 97);
+    cloud << offsetCloud(shape, 97, -0.05, 0.05, 17), offsetCloud(shape, 97, 1, 30, 18);
+    // The Exact method at a loose and a tight tolerance, with iteration caps that stop some
+    // queries short: where a cap stops the SIMD solver, the scalar solver answers with the
+    // same cap, so the answers are the single queries' (to the tolerance where both converge).
+    for (const S tolerance : {S(1e-3), S(1e-6)}) {
+      for (const int cap : {1, 3, 250}) {
+        SCOPED_TRACE(testing::Message() << "tolerance " << tolerance << ", cap " << cap);
+        BatchOptions<S> options;
+        options.distance = {DistanceMethod::kExact, tolerance, cap};
+        BatchStatistics statistics;
+        options.statistics = &statistics;
+        BatchDistanceResult<S> batch;
+        batchDistance(shape, fcl::Transform3<S>::Identity(), cloud, batch, options);
+        for (Eigen::Index i = 0; i < cloud.cols(); ++i) {
+          const auto r = pointDistance(shape, Vector3<S>(cloud.col(i)), options.distance);
+          const S floor =
+              S(8) * std::numeric_limits<S>::epsilon() * (cloud.col(i).norm() + shape.size());
+          if (r.converged) {
+            // Two points with Eq. 7 errors below the tolerance: their distances agree to it.
+            EXPECT_NEAR(batch.distance[i], r.distance, S(2) * (tolerance * shape.size() + floor))
+                << "vertex " << i;
+          } else if (r.error > S(2) * (tolerance * shape.size() + floor)) {
+            // Single queries the cap stopped well short: the SIMD solver hands those vertices
+            // back, so the answer is the scalar one, bitwise. (Near the tolerance its own
+            // rounding may just converge where the scalar one just does not.)
+            EXPECT_EQ(batch.distance[i], r.distance) << "vertex " << i;
+          }
+        }
+        if (cap == 250) EXPECT_GT(statistics.simd, statistics.scalar);
+        if (cap == 1) EXPECT_GT(statistics.scalar, 0u);
+      }
+    }
+    // The other methods take the scalar path: bitwise the single queries.
+    for (const DistanceMethod method : {DistanceMethod::kPaper, DistanceMethod::kRadial}) {
+      BatchOptions<S> options;
+      options.distance = DistanceOptions<S>::of(method);
+      BatchStatistics statistics;
+      options.statistics = &statistics;
+      BatchDistanceResult<S> batch;
+      batchDistance(shape, fcl::Transform3<S>::Identity(), cloud, batch, options);
+      EXPECT_EQ(statistics.simd, 0u);
+      for (Eigen::Index i = 0; i < cloud.cols(); ++i) {
+        const auto r = pointDistance(shape, Vector3<S>(cloud.col(i)), options.distance);
+        ASSERT_EQ(batch.distance[i], r.distance) << toString(method) << " vertex " << i;
+        ASSERT_EQ(batch.nearest_point.col(i), r.nearest_point) << toString(method);
+      }
+    }
+  }
+}
+
 TYPED_TEST(BatchDistanceTest, EveryInstructionSetGivesTheSameAnswers) {
   using S = TypeParam;
   const Superellipsoid<S> shapes[] = {{S(3.5), S(3), S(2), S(0.4), S(0.3)},
