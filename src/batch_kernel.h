@@ -8,14 +8,15 @@
 // The kernel does what the scalar solver (exact_solver.cpp) does on its common path, with the
 // same formulas, and hands every other case back to it:
 //  - outside pass: Newton in the shape's smooth formulation (primal where ε ≤ 1, dual where
-//    ε ≥ 1: primalIsSmoother in solvers.h) from the caller's warm start, if any, else from the
-//    radial projection. Outside the problem is convex, so a start that converges gives the
-//    scalar solver's answer to the tolerance. Lanes found inside are marked kLaneInside.
+//    ε ≥ 1: primalIsSmoother in solvers.h) and, where it stalls, in the other (ExactSolver::
+//    refine), from the caller's warm start, if any, else from the radial projection. Outside the
+//    problem is convex, so a start that converges gives the scalar solver's answer to the
+//    tolerance. Lanes found inside are marked kLaneInside.
 //  - inside pass: Newton from the radial projection and the three axis projections (the
 //    scalar solver's first four starts); the nearest converged answer wins.
 // A lane goes back to the scalar solver (kLaneScalar) whenever the scalar solver would do
-// more than that: a start that does not converge in the formulation tried (the scalar
-// solver then switches formulation and starts), an inside query near a coordinate plane
+// more than that: a start that converges in neither formulation (the scalar solver then tries
+// further starts and, outside, the bracketed projection), an inside query near a coordinate plane
 // (tilted starts), deep inside (the centre's candidates, and the cross-section diagonals of
 // elongated shapes), the exact centre, or an iteration count over the caller's cap.
 //
