@@ -46,10 +46,11 @@ void printRow(const ScalingRow& r) {
   std::printf("\n");
 }
 
-/// Share of the vertices the batched call solved that the SIMD solver answered.
+/// Share of the vertices the batched call solved that the SIMD solver answered; −1 (not shown)
+/// where the cull left none to solve.
 double simdShare(const BatchStatistics& s) {
   const std::size_t solved = s.simd + s.scalar;
-  return solved == 0 ? 0.0 : double(s.simd) / double(solved);
+  return solved == 0 ? -1.0 : double(s.simd) / double(solved);
 }
 
 /// The threads a batched call with BatchOptions::threads = `threads` really uses for n vertices.

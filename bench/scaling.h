@@ -19,6 +19,7 @@ struct ScalingRow {
   double result;      // min distance or vertex count: paths on one cloud must agree
   double vs_single;   // speed-up over single queries on the same cloud in the same run (0: none)
   double simd_share;  // batched rows: share of the solved vertices the SIMD solver answered
+                      // (−1: not a batched row, or none left to solve)
 };
 
 /// Time per vertex and in total for point clouds of each size, around the cloth-scene shape:
