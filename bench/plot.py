@@ -132,6 +132,7 @@ def plot_scaling(csv_path, path):
     fig, axes = plt.subplots(1, 2, figsize=(13, 4.8))
     for ax, panel, title in ((axes[0], "scene", "scene cloud (1 % near the surface), double"),
                              (axes[1], "batch", "all near / all far, double")):
+        ax.set_prop_cycle(color=plt.cm.tab20.colors)  # more series than the default 10 colours
         for (p, name), pts in sorted(series.items()):
             if p != panel:
                 continue
