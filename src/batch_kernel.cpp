@@ -247,7 +247,6 @@ class LaneSolver {
                               hn::Set(d, problem.tolerance))),
         iterations_(hn::Zero(d)) {}
 
-  V tolerance() const { return tolerance_; }
   V iterations() const { return iterations_; }
 
   /// ExactSolver::candidateOnRay; `gauge` gets G(ray).
