@@ -76,7 +76,7 @@ void solveLanes(const LaneProblem<double>& problem, const LaneArrays<double>& la
                 bool inside_pass);
 
 /// The instruction sets compiled into the kernel that this CPU runs, best first, as Highway's
-/// target bits and names (e.g. "AVX3", "AVX2", "SSE4", "EMU128").
+/// target bits and names (e.g. "AVX3", "AVX2", "SSE4", "SCALAR").
 std::vector<std::pair<std::int64_t, std::string>> simdTargetsOfThisCpu();
 
 /// Test hook: makes the dispatch choose among `targets` only (Highway target bits); 0 restores

@@ -29,7 +29,7 @@ template <typename S>
 using Matrix3X = Eigen::Matrix<S, 3, Eigen::Dynamic>;
 
 /// The instruction set the SIMD solver runs on this CPU ("AVX3" = AVX-512, "AVX2", "SSE4",
-/// "SSSE3" or "EMU128" = portable code), chosen once at run time.
+/// "SCALAR" or "EMU128" = portable code, as the compiler allows), chosen once at run time.
 FSE_EXPORT const char* simdInstructionSet();
 
 /// Where the vertices of one batched call went (BatchOptions::statistics).
