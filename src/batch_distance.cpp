@@ -16,7 +16,6 @@
 #include <atomic>
 #include <cstdint>
 #include <iomanip>
-#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -91,12 +90,13 @@ struct ChunkLanes {
     }
     return out;
   }
-  /// Fills the lanes up to a whole vector with copies of the last one (results ignored).
-  void pad() {
+  /// Fills the lanes up to a whole vector with copies of the last one (results ignored); the
+  /// hints too where they were filled.
+  void pad(bool with_hints) {
     for (std::size_t k = count; k < count + detail::kMaxLanes && count > 0; ++k) {
       for (int c = 0; c < 3; ++c) {
         query[c][k] = query[c][count - 1];
-        hint[c][k] = hint[c][count - 1];
+        if (with_hints) hint[c][k] = hint[c][count - 1];
       }
     }
   }
@@ -150,26 +150,23 @@ class VertexSolver {
     ChunkLanes<S> lanes;
     std::array<Eigen::Index, kChunk> vertex;
     std::array<Vector3<S>, kChunk> p_SV;
-    const S nan = std::numeric_limits<S>::quiet_NaN();
     for (Eigen::Index i = first; i < last; ++i) {
       const std::size_t k = lanes.count;
       p_SV[k] = inShapeFrame(i);
       if (!keep(p_SV[k])) continue;
       vertex[k] = i;
-      const Vector3<S> hint = options_.warm_start_W == nullptr
-                                  ? Vector3<S>::Constant(nan)
-                                  : Vector3<S>(X_SW_ * options_.warm_start_W->col(i));
-      for (int c = 0; c < 3; ++c) {
-        lanes.query[c][k] = std::abs(p_SV[k][c]);
-        lanes.hint[c][k] = std::abs(hint[c]);
+      for (int c = 0; c < 3; ++c) lanes.query[c][k] = std::abs(p_SV[k][c]);
+      if (options_.warm_start_W != nullptr) {
+        const Vector3<S> hint = X_SW_ * options_.warm_start_W->col(i);
+        for (int c = 0; c < 3; ++c) lanes.hint[c][k] = std::abs(hint[c]);
       }
       ++lanes.count;
     }
     const std::size_t culled = std::size_t(last - first) - lanes.count;
     if (lanes.count == 0) return count(culled, 0, 0);
-    lanes.pad();
-    detail::solveLanes(problem_, lanes.arrays(options_.warm_start_W != nullptr), lanes.count,
-                       false);
+    const bool with_hints = options_.warm_start_W != nullptr;
+    lanes.pad(with_hints);
+    detail::solveLanes(problem_, lanes.arrays(with_hints), lanes.count, false);
 
     // The vertices found inside, gathered into whole vectors for the inside pass.
     ChunkLanes<S> inside;
@@ -180,7 +177,7 @@ class VertexSolver {
     }
     std::array<bool, kChunk> is_inside{};
     if (inside.count > 0) {
-      inside.pad();
+      inside.pad(false);
       detail::solveLanes(problem_, inside.arrays(false), inside.count, true);
       for (std::size_t j = 0; j < inside.count; ++j) {
         const std::size_t k = inside.source[j];
@@ -200,15 +197,10 @@ class VertexSolver {
         ++handed_back;
         continue;
       }
-      // Back from the first octant to the vertex's own (ExactSolver::finish), then to W.
-      PointDistanceResult<S> r;
-      for (int c = 0; c < 3; ++c) {
-        const bool negative = p_SV[k][c] < S(0);
-        r.nearest_point[c] = negative ? -lanes.point[c][k] : lanes.point[c][k];
-        r.normal[c] = negative ? -lanes.normal[c][k] : lanes.normal[c][k];
-      }
-      const S length = (p_SV[k] - r.nearest_point).norm();
-      r.distance = is_inside[k] ? -length : length;
+      // Back from the first octant to the vertex's own, then to W.
+      PointDistanceResult<S> r = detail::fromFirstOctant(
+          p_SV[k], Vector3<S>(lanes.point[0][k], lanes.point[1][k], lanes.point[2][k]),
+          Vector3<S>(lanes.normal[0][k], lanes.normal[1][k], lanes.normal[2][k]), is_inside[k]);
       r.nearest_point = X_WS_ * r.nearest_point;
       r.normal = X_WS_.linear() * r.normal;
       emit(vertex[k], r);

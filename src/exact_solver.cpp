@@ -374,14 +374,7 @@ class ExactSolver {
 
   /// Reflects the first-octant candidate back to Q's octant.
   PointDistanceResult<S> finish(const Candidate<S>& c, bool inside) const {
-    PointDistanceResult<S> r;
-    for (int i = 0; i < 3; ++i) {
-      const bool negative = q_.x[i] < S(0);
-      r.nearest_point[i] = negative ? -c.point[i] : c.point[i];
-      r.normal[i] = negative ? -c.normal[i] : c.normal[i];
-    }
-    const S len = (q_.x - r.nearest_point).norm();
-    r.distance = inside ? -len : len;
+    PointDistanceResult<S> r = fromFirstOctant(q_.x, c.point, c.normal, inside);
     r.error = c.error;
     r.iterations = c.iterations;
     r.converged = c.error <= q_.tolerance;

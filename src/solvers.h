@@ -49,6 +49,24 @@ bool primalIsSmoother(const Superellipsoid<S>& shape) {
   return primal_roughness <= dual_roughness;
 }
 
+/// The Exact method works on |Q| (the shape is symmetric in each coordinate plane): takes its
+/// first-octant answer N, n back to Q's own octant (a coordinate of Q that is 0 counts as
+/// positive) and sets d = ±‖Q − N‖ on Q's side. Error, iterations and convergence are the
+/// caller's.
+template <typename S>
+PointDistanceResult<S> fromFirstOctant(const Vector3<S>& q, const Vector3<S>& point,
+                                       const Vector3<S>& normal, bool inside) {
+  PointDistanceResult<S> r;
+  for (int i = 0; i < 3; ++i) {
+    const bool negative = q[i] < S(0);
+    r.nearest_point[i] = negative ? -point[i] : point[i];
+    r.normal[i] = negative ? -normal[i] : normal[i];
+  }
+  const S len = (q - r.nearest_point).norm();
+  r.distance = inside ? -len : len;
+  return r;
+}
+
 /// Fills a result from a surface point N: d = ±‖Q − N‖ (the sign of the query's side),
 /// n = the unit normal at N, and the paper's error ‖N + d·n − Q‖ (Eq. 7).
 template <typename S>
