@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <random>
 
+#include "fcl_superellipsoid/diagnostics.h"
 #include "fcl_superellipsoid/fcl_integration.h"
 #include "fcl_superellipsoid/point_distance.h"
 #include "fcl_superellipsoid/tessellation.h"

@@ -1,4 +1,4 @@
-// fse_bench: what accuracy costs in time. See --help, and the README's "Benchmark" section.
+// fse_bench: what accuracy costs in time. See --help, and docs/benchmark.md for a full run.
 //
 // The default run answers the same points with every method (our Exact solver at several
 // tolerances, the paper's method, Radial, FCL's BVH mesh at several resolutions, FCL's GJK on

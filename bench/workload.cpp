@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "reference_distance.h"
+#include "reference_distance.h"  // test_support/
 
 namespace fcl_superellipsoid {
 namespace bench {

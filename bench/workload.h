@@ -44,7 +44,7 @@ bool truthByConstruction(Side side);
 /// point P stepped along its normal by t > 0: the shape is convex, so P is the nearest point
 /// and t the distance, exactly. Inside points (stepping inwards is not exact: another part of
 /// the surface can be nearer) get the independent long-double reference
-/// (test/reference_distance.h) for their first `truth_count` points.
+/// (test_support/reference_distance.h) for their first `truth_count` points.
 struct PointSet {
   Side side;
   std::vector<Vector3<double>> points;

@@ -1,18 +1,32 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, runs the benchmark binary and plots its output.
-# Arguments go to the binary (default: --quick, a run of seconds; --help lists the options;
-# no argument but --full runs everything: about 15 minutes on 2 cores).
-# Results: out/ (results.csv, results.json, scaling.csv and the PNG plots).
+# Installs what is missing, builds, runs the benchmark, plots it and writes its results page.
+#   scripts/bench.sh            the quick mode (seconds after the build): out/ (CSV, JSON, PNG plots)
+#                               and out/benchmark.md
+#   scripts/bench.sh --full     everything (about 20 minutes on 2 cores): fse_bench's full run, the
+#                               micro-benchmarks, the culling study and the aspect sweep; writes
+#                               docs/benchmark.md, docs/bench/*.png and the README's headline block
+#   scripts/bench.sh ARGS...    fse_bench with these arguments (--help lists them); results in out/
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh --bench
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build --parallel "$(nproc)" --target fse_bench fse_microbench
+bench=build/bench
 if [ $# -eq 0 ]; then set -- --quick; fi
-if [ "$1" = "--full" ]; then shift; fi
-build/bench/fse_bench "$@"   # writes to out/ unless --out says otherwise
+if [ "$1" = "--full" ]; then
+  rm -rf out && mkdir -p out
+  $bench/fse_bench --out out
+  $bench/fse_microbench --benchmark_min_time=0.2 --benchmark_out=out/micro.json \
+    --benchmark_out_format=json
+  $bench/fse_bench --culling 1000000 | tee out/culling.txt
+  $bench/fse_bench --aspect-sweep | tee out/aspect_sweep.txt
+  /usr/bin/python3 bench/plot.py out
+  /usr/bin/python3 bench/benchmark_doc.py out --docs docs --readme README.md
+  exit 0
+fi
+$bench/fse_bench "$@"   # writes to out/ unless --out says otherwise
 case " $* " in
   *" --help "*|*" -h "*|*" --aspect-sweep "*|*" --culling "*) ;;
-  *" --out "*) ;;  # the plots are for out/; run bench/plot.py on your directory
-  *) /usr/bin/python3 bench/plot.py out ;;
+  *" --out "*) ;;  # plot and document your directory with bench/plot.py and bench/benchmark_doc.py
+  *) /usr/bin/python3 bench/plot.py out && /usr/bin/python3 bench/benchmark_doc.py out ;;
 esac

@@ -2,7 +2,7 @@
 #define FCL_SUPERELLIPSOID_TEST_TEST_HELPERS_H
 
 // Shared test support: scalar-dependent tolerances, seeded sampling, and an independent
-// long-double reference of the gauge (written from MATH.md, not from src/).
+// long-double reference of the gauge (written from docs/math.md, not from src/).
 
 #include <gtest/gtest.h>
 

@@ -44,15 +44,15 @@ struct BatchOptions {
   DistanceOptions<S> distance;  ///< method, tolerance, iteration cap (default: Exact)
   /// 0: as many threads as TBB offers; 1: the calling thread only; n: at most n.
   int threads = 0;
-  /// No threads below this many vertices. Measured on 2 cores with the SIMD solver (work is cut
-  /// into chunks of 256 vertices): near-surface vertices gain from 512 up (1.85×; 1.89× at
-  /// 1,024); far vertices that the within-margin cull drops in nanoseconds gain from 2,048 up
-  /// (1.08×; at 1,024 they lose 0.2 µs, 0.95×). 1,024 keeps nearly all of the first.
+  /// No threads below this many vertices (work is cut into chunks of 256 vertices). The default
+  /// was chosen by measurement with the SIMD solver: below it a second thread saves less than it
+  /// costs on vertices the within-margin cull drops in nanoseconds.
   int min_parallel_vertices = 1024;
   /// The Exact method on SIMD lanes (the default): several vertices per instruction, with the
   /// instruction set chosen at run time for the CPU (AVX-512, AVX2, SSE4, or portable code).
   /// Answers agree with single queries to the solver's tolerance; a vertex the SIMD solver
-  /// cannot settle the way the scalar solver would (see the README) goes to the scalar solver.
+  /// cannot settle the way the scalar solver would (docs/usage.md → "Batched queries") goes to
+  /// the scalar solver.
   /// false: every vertex through the scalar pointDistance(), bitwise equal to single queries.
   /// The other methods always run the scalar solver.
   bool vectorize = true;

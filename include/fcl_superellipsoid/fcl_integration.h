@@ -26,6 +26,9 @@
 ///    broadphase callbacks below are FCL's DefaultCollisionFunction / DefaultDistanceFunction
 ///    with the front end inside.
 ///
+/// Counters of the traversal behind these calls (how many vertices a query reached) are in
+/// diagnostics.h.
+///
 /// Pairs: Superellipsoid vs fcl::BVHModel<BV> for every BV type (triangle meshes and point
 /// clouds: the model's vertices are the query points, paper §3), and vs fcl::Sphere (a vertex
 /// with a radius). Other pairs are refused with FCL's warning.
@@ -50,8 +53,6 @@
 #include <fcl/broadphase/default_broadphase_callbacks.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
-
-#include <cstdint>
 
 #include "fcl_superellipsoid/export.h"
 #include "fcl_superellipsoid/superellipsoid.h"
@@ -92,15 +93,6 @@ template <typename S>
 FSE_EXPORT bool defaultDistanceFunction(fcl::CollisionObject<S>* o1, fcl::CollisionObject<S>* o2,
                                         void* data, S& dist);
 
-/// Counters of the BVH vertex traversal, per thread, accumulated until reset (for
-/// benchmarks: the fraction of a model's vertices a query touched).
-struct VertexTraversalStats {
-  std::uint64_t bv_tests = 0;          ///< bounding volumes bounded against the shape
-  std::uint64_t vertices_bounded = 0;  ///< vertices reached by the traversal
-  std::uint64_t vertices_solved = 0;   ///< vertices that needed the point solver
-};
-FSE_EXPORT VertexTraversalStats& vertexTraversalStats();
-
 #define FSE_DECLARE_FRONT_END(S)                                                                   \
   extern template FSE_EXPORT S distance(const fcl::CollisionObject<S>*,                            \
                                         const fcl::CollisionObject<S>*,                            \
@@ -127,7 +119,7 @@ FSE_DECLARE_FRONT_END(double)
 }  // namespace fcl_superellipsoid
 
 // FCL's function tables for GJKSolver_libccd are instantiated once, in this library
-// (src/fcl_*_table_*.cpp, 30–60 s of compile time each). These declarations keep every
+// (src/fcl_glue/fcl_*_table_*.cpp, 30–60 s of compile time each). These declarations keep every
 // translation unit that includes this header, and calls fcl::distance / fcl::collide with
 // that solver, from instantiating them again, and make its calls read the tables that hold
 // the superellipsoid entries.

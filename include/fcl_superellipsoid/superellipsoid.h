@@ -4,7 +4,7 @@
 /// @file
 /// The superellipsoid as an FCL collision geometry.
 ///
-/// Convention (the reference paper's Eq. 3 and 4; see README "Exponent convention"):
+/// Convention (the reference paper's Eq. 3 and 4; docs/math.md → "Convention"):
 /// radii a1, a2, a3 > 0 along the shape frame's x, y, z axes; ε1 shapes the xy-plane,
 /// ε2 the z direction. The implicit (inside–outside) function is
 ///
@@ -38,11 +38,17 @@ using Vector3 = fcl::Vector3<S>;
 /// Exponents are accepted in the open interval (0, 2), where the shape is convex and
 /// smooth. The range tested and supported with full accuracy is [0.02, 1.98]; inside it
 /// every evaluation is finite for points from 1e-12 × size to 1e6 × size from the centre.
+///
+/// Constructing a Superellipsoid registers the library's entries in FCL's function tables
+/// (fcl_integration.h: registerWithFcl(), once per process, thread-safe), so the first query
+/// through fcl::distance / fcl::collide with a GJKSolver_libccd already finds them. This is the
+/// shape's one call into the FCL layer; it costs nothing after the first construction.
 template <typename S>
 class FSE_EXPORT Superellipsoid : public fcl::ShapeBase<S> {
  public:
   /// @throws std::invalid_argument if a radius is not finite and positive, or an exponent
   ///         is not finite or not in (0, 2). The message names the parameter and its value.
+  /// Registers with FCL's tables on first use (see the class comment).
   Superellipsoid(S a1, S a2, S a3, S eps1, S eps2);
   Superellipsoid(const Vector3<S>& radii, S eps1, S eps2);
 
@@ -75,7 +81,7 @@ class FSE_EXPORT Superellipsoid : public fcl::ShapeBase<S> {
   /// True if p_S is inside or on the surface (G ≤ 1).
   bool contains(const Vector3<S>& p_S) const;
   /// The support point: the surface point that maximises direction·x, in closed form as the
-  /// gradient of the support function h (MATH.md). Unique for every non-zero direction
+  /// gradient of the support function h (docs/math.md). Unique for every non-zero direction
   /// (the shape is strictly convex for ε < 2); any length of direction. For the zero
   /// direction every surface point qualifies: returns (a1, 0, 0).
   /// @throws std::invalid_argument if a component of direction is NaN or infinite.

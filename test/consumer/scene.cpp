@@ -1,5 +1,5 @@
-// The README's FCL example: a superellipsoid, a cloth mesh and a point cloud in a broadphase
-// manager; contacts and distance through the library's callbacks. Checks its own answers
+// The FCL example of docs/usage.md: a superellipsoid, a cloth mesh and a point cloud in a
+// broadphase manager; contacts and distance through the library's callbacks. Checks its own answers
 // against brute force over the vertices and exits non-zero if they disagree.
 #include <fcl/fcl.h>
 #include <fcl_superellipsoid/fcl_integration.h>

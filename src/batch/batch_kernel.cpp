@@ -1,0 +1,650 @@
+// The batched Exact solver on SIMD lanes (see batch_kernel.h for what it solves and what it
+// hands back to the scalar solver). Highway compiles the part between HWY_BEFORE_NAMESPACE and
+// HWY_AFTER_NAMESPACE once per instruction set (foreach_target.h re-includes this file); the
+// HWY_ONCE part at the end picks one at run time.
+//
+// Every formula mirrors solvers/exact_solver.cpp and shape/nested_norm.h, lane by lane; masks
+// stand in for its branches; the rules both share (tolerance floor, budgets, halvings,
+// thresholds) are read from solvers/exact_rules.h. Two differences, both exact in arithmetic:
+//  - the bordered Newton system [A, b; bᵀ, 0]·[δ; λ] = [r; 0] is solved in the tangent plane:
+//    δ ⊥ b, so with an orthonormal tangent basis T = (t1, t2) of b, (TᵀAT)·c = Tᵀr, δ = T·c.
+//    TᵀAT is the 2×2 block that convexification already inspects, so one small solve replaces
+//    a 4×4 LU;
+//  - the dual iteration keeps the dual's normal for its answer instead of re-deriving the
+//    primal's at the end (they agree to rounding at a converged point).
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "batch/batch_kernel.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+// (foreach_target.h first: it re-includes this file once per target.)
+#include <hwy/contrib/math/math-inl.h>
+#include <hwy/highway.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "batch/batch_kernel.h"
+#include "batch/simd_targets_for_test.h"
+#include "fcl_superellipsoid/batch_distance.h"
+#include "solvers/exact_rules.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace fcl_superellipsoid {
+namespace detail {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+namespace rules = exact_rules;
+
+/// A nested norm's numbers (nested_norm.h), one copy broadcast to every lane.
+template <class D>
+struct NormLanes {
+  using V = hn::Vec<D>;
+  V s0, s1, s2, p1, p2, inv_p1, inv_p2, p1_m1, p2_m1;
+  NormLanes(D d, const NestedNorm<hn::TFromD<D>>& n)
+      : s0(hn::Set(d, n.scale[0])),
+        s1(hn::Set(d, n.scale[1])),
+        s2(hn::Set(d, n.scale[2])),
+        p1(hn::Set(d, n.p1)),
+        p2(hn::Set(d, n.p2)),
+        inv_p1(hn::Set(d, n.inv_p1)),
+        inv_p2(hn::Set(d, n.inv_p2)),
+        p1_m1(hn::Set(d, n.p1 - 1)),
+        p2_m1(hn::Set(d, n.p2 - 1)) {}
+};
+
+template <class D>
+struct Vec3 {
+  hn::Vec<D> x, y, z;
+};
+
+template <class D>
+HWY_INLINE hn::Vec<D> Dot(const Vec3<D>& a, const Vec3<D>& b) {
+  return hn::MulAdd(a.x, b.x, hn::MulAdd(a.y, b.y, hn::Mul(a.z, b.z)));
+}
+template <class D>
+HWY_INLINE Vec3<D> Plus(const Vec3<D>& a, const Vec3<D>& b) {
+  return {hn::Add(a.x, b.x), hn::Add(a.y, b.y), hn::Add(a.z, b.z)};
+}
+template <class D>
+HWY_INLINE Vec3<D> Minus(const Vec3<D>& a, const Vec3<D>& b) {
+  return {hn::Sub(a.x, b.x), hn::Sub(a.y, b.y), hn::Sub(a.z, b.z)};
+}
+template <class D>
+HWY_INLINE Vec3<D> Times(hn::Vec<D> s, const Vec3<D>& a) {
+  return {hn::Mul(s, a.x), hn::Mul(s, a.y), hn::Mul(s, a.z)};
+}
+/// a + s·b
+template <class D>
+HWY_INLINE Vec3<D> PlusTimes(const Vec3<D>& a, hn::Vec<D> s, const Vec3<D>& b) {
+  return {hn::MulAdd(s, b.x, a.x), hn::MulAdd(s, b.y, a.y), hn::MulAdd(s, b.z, a.z)};
+}
+template <class D>
+HWY_INLINE Vec3<D> Cross(const Vec3<D>& a, const Vec3<D>& b) {
+  return {hn::NegMulAdd(a.z, b.y, hn::Mul(a.y, b.z)), hn::NegMulAdd(a.x, b.z, hn::Mul(a.z, b.x)),
+          hn::NegMulAdd(a.y, b.x, hn::Mul(a.x, b.y))};
+}
+template <class D>
+HWY_INLINE Vec3<D> Select(hn::Mask<D> m, const Vec3<D>& a, const Vec3<D>& b) {
+  return {hn::IfThenElse(m, a.x, b.x), hn::IfThenElse(m, a.y, b.y), hn::IfThenElse(m, a.z, b.z)};
+}
+template <class D>
+HWY_INLINE hn::Mask<D> AllFinite(const Vec3<D>& a) {
+  return hn::And(hn::IsFinite(a.x), hn::And(hn::IsFinite(a.y), hn::IsFinite(a.z)));
+}
+
+/// x^p for x ≥ 0 and p > 0, as exp(p·log x); 0^p = 0.
+template <class D>
+HWY_INLINE hn::Vec<D> Pow(D d, hn::Vec<D> x, hn::Vec<D> p) {
+  const auto positive = hn::Gt(x, hn::Zero(d));
+  const hn::Vec<D> safe = hn::IfThenElse(positive, x, hn::Set(d, 1));
+  return hn::IfThenElseZero(positive, hn::Exp(d, hn::Mul(p, hn::Log(d, safe))));
+}
+
+/// ‖(a, b)‖_p and its gradient's powers (a/N)^(p−1), (b/N)^(p−1): pnorm2WithPowers, lane-wise.
+template <class D>
+struct PNorm2Lanes {
+  hn::Vec<D> norm, pow_a, pow_b;
+};
+
+template <class D>
+HWY_INLINE PNorm2Lanes<D> PNorm2WithPowers(D d, hn::Vec<D> a, hn::Vec<D> b, hn::Vec<D> p,
+                                           hn::Vec<D> inv_p, hn::Vec<D> p_minus_1) {
+  using T = hn::TFromD<D>;
+  const hn::Vec<D> zero = hn::Zero(d), one = hn::Set(d, 1);
+  const hn::Vec<D> m = hn::Max(a, b), lo = hn::Min(a, b);
+  const auto m_positive = hn::Gt(m, zero), lo_positive = hn::Gt(lo, zero);
+  const hn::Vec<D> ratio = hn::Div(lo, hn::IfThenElse(m_positive, m, one));  // lo/m ∈ [0, 1]
+  const hn::Vec<D> q = Pow(d, ratio, p);
+  const hn::Vec<D> one_plus_q = hn::Add(one, q);
+  // w = (1 + q)^(1/p), N = m·w. log(1 + q) rounds 1 + q first; its absolute error of an ulp
+  // moves N by a relative ulp/p, so log1p is not needed.
+  const hn::Vec<D> w = hn::Exp(d, hn::Mul(inv_p, hn::Log(d, one_plus_q)));
+  const hn::Vec<D> n = hn::Mul(m, w);
+  // (m/N)^(p−1) = N/(m·(1 + q)) = w/(1 + q);  (lo/N)^(p−1) = (lo/m)^(p−1)·(m/N)^(p−1), with
+  // (lo/m)^(p−1) = q/ratio, or a power of its own where q is subnormal (nested_norm.h).
+  const hn::Vec<D> pow_m = hn::Div(w, one_plus_q);
+  hn::Vec<D> ratio_pow = hn::Div(q, hn::IfThenElse(lo_positive, ratio, one));
+  const auto subnormal = hn::And(lo_positive, hn::Lt(q, hn::Set(d, std::numeric_limits<T>::min())));
+  if (!hn::AllFalse(d, subnormal)) {
+    ratio_pow = hn::IfThenElse(subnormal, Pow(d, ratio, p_minus_1), ratio_pow);
+  }
+  const hn::Vec<D> pow_lo = hn::IfThenElseZero(lo_positive, hn::Mul(ratio_pow, pow_m));
+  const auto a_larger = hn::Ge(a, b);
+  return {n, hn::IfThenElseZero(m_positive, hn::IfThenElse(a_larger, pow_m, pow_lo)),
+          hn::IfThenElseZero(m_positive, hn::IfThenElse(a_larger, pow_lo, pow_m))};
+}
+
+/// A symmetric 3×3 matrix by its upper triangle.
+template <class D>
+struct Sym3 {
+  hn::Vec<D> xx, xy, xz, yy, yz, zz;
+  Vec3<D> times(const Vec3<D>& v) const {
+    return {hn::MulAdd(xx, v.x, hn::MulAdd(xy, v.y, hn::Mul(xz, v.z))),
+            hn::MulAdd(xy, v.x, hn::MulAdd(yy, v.y, hn::Mul(yz, v.z))),
+            hn::MulAdd(xz, v.x, hn::MulAdd(yz, v.y, hn::Mul(zz, v.z)))};
+  }
+};
+
+template <class D>
+HWY_INLINE Sym3<D> Select(hn::Mask<D> m, const Sym3<D>& a, const Sym3<D>& b) {
+  return {hn::IfThenElse(m, a.xx, b.xx), hn::IfThenElse(m, a.xy, b.xy),
+          hn::IfThenElse(m, a.xz, b.xz), hn::IfThenElse(m, a.yy, b.yy),
+          hn::IfThenElse(m, a.yz, b.yz), hn::IfThenElse(m, a.zz, b.zz)};
+}
+
+/// NestedNormEval, lane-wise.
+template <class D>
+struct NormEval {
+  hn::Vec<D> value;
+  Vec3<D> gradient;
+  Sym3<D> hessian;
+};
+
+template <class D>
+HWY_INLINE NormEval<D> Select(hn::Mask<D> m, const NormEval<D>& a, const NormEval<D>& b) {
+  return {hn::IfThenElse(m, a.value, b.value), Select(m, a.gradient, b.gradient),
+          Select(m, a.hessian, b.hessian)};
+}
+
+/// NestedNorm::evaluate with the Hessian, lane-wise (the same formulas; see nested_norm.h).
+template <class D>
+HWY_INLINE NormEval<D> Evaluate(D d, const NormLanes<D>& c, const Vec3<D>& w) {
+  using T = hn::TFromD<D>;
+  using V = hn::Vec<D>;
+  const V zero = hn::Zero(d), one = hn::Set(d, 1);
+  const V u0 = hn::Mul(w.x, c.s0), u1 = hn::Mul(w.y, c.s1), u2 = hn::Mul(w.z, c.s2);
+  const PNorm2Lanes<D> level1 = PNorm2WithPowers(d, u0, u1, c.p1, c.inv_p1, c.p1_m1);
+  const V r = level1.norm;
+  const PNorm2Lanes<D> level2 = PNorm2WithPowers(d, r, u2, c.p2, c.inv_p2, c.p2_m1);
+  NormEval<D> out;
+  out.value = level2.norm;
+  const auto value_positive = hn::Gt(out.value, zero), r_positive = hn::Gt(r, zero);
+  const V inv_value = hn::Div(one, hn::IfThenElse(value_positive, out.value, one));
+  const V inv_r = hn::IfThenElseZero(r_positive, hn::Div(one, hn::IfThenElse(r_positive, r, one)));
+  const V t1 = hn::Mul(u0, inv_r), t2 = hn::Mul(u1, inv_r);
+  const V tr = hn::Mul(r, inv_value), t3 = hn::Mul(u2, inv_value);
+  const V r1 = level1.pow_a, r2 = level1.pow_b, g_r = level2.pow_a, g_3 = level2.pow_b;
+  out.gradient = {hn::IfThenElseZero(value_positive, hn::Mul(hn::Mul(g_r, r1), c.s0)),
+                  hn::IfThenElseZero(value_positive, hn::Mul(hn::Mul(g_r, r2), c.s1)),
+                  hn::IfThenElseZero(value_positive, hn::Mul(g_3, c.s2))};
+
+  // t^(p−2) = t^(p−1)/t with a floor on t (nested_norm.h).
+  const V floor = hn::Set(d, std::sqrt(std::numeric_limits<T>::min()));
+  auto pow_minus_2 = [&](V t, V pow_pm1) { return hn::Div(pow_pm1, hn::Max(t, floor)); };
+  const V c1 = hn::Mul(c.p1_m1, inv_r);
+  const V r11 = hn::Mul(hn::Mul(c1, pow_minus_2(t1, r1)), hn::Mul(t2, r2));
+  const V r22 = hn::Mul(hn::Mul(c1, pow_minus_2(t2, r2)), hn::Mul(t1, r1));
+  const V r12 = hn::Neg(hn::Mul(hn::Mul(c1, r1), r2));
+  const V c2 = hn::Mul(c.p2_m1, inv_value);
+  const V g_rr = hn::Mul(hn::Mul(c2, pow_minus_2(tr, g_r)), hn::Mul(t3, g_3));
+  const V g_r3 = hn::Neg(hn::Mul(hn::Mul(c2, g_r), g_3));
+  const auto both = hn::And(value_positive, r_positive);
+  Sym3<D> h;
+  h.xx = hn::IfThenElseZero(both, hn::MulAdd(hn::Mul(g_rr, r1), r1, hn::Mul(g_r, r11)));
+  h.yy = hn::IfThenElseZero(both, hn::MulAdd(hn::Mul(g_rr, r2), r2, hn::Mul(g_r, r22)));
+  h.xy = hn::IfThenElseZero(both, hn::MulAdd(hn::Mul(g_rr, r1), r2, hn::Mul(g_r, r12)));
+  h.xz = hn::IfThenElseZero(both, hn::Mul(g_r3, r1));
+  h.yz = hn::IfThenElseZero(both, hn::Mul(g_r3, r2));
+  h.zz = hn::IfThenElseZero(value_positive,
+                            hn::Mul(hn::Mul(c2, pow_minus_2(t3, g_3)), hn::Mul(tr, g_r)));
+  // diag(s)·H_u·diag(s)
+  out.hessian = {hn::Mul(h.xx, hn::Mul(c.s0, c.s0)), hn::Mul(h.xy, hn::Mul(c.s0, c.s1)),
+                 hn::Mul(h.xz, hn::Mul(c.s0, c.s2)), hn::Mul(h.yy, hn::Mul(c.s1, c.s1)),
+                 hn::Mul(h.yz, hn::Mul(c.s1, c.s2)), hn::Mul(h.zz, hn::Mul(c.s2, c.s2))};
+  return out;
+}
+
+/// ExactSolver's Candidate, lane-wise.
+template <class D>
+struct Candidate {
+  Vec3<D> point, normal, gradient;  // gradient and hessian: the primal's ∇G, ∇²G at point
+  Sym3<D> hessian;
+  hn::Vec<D> error;
+};
+
+template <class D>
+HWY_INLINE Candidate<D> Select(hn::Mask<D> m, const Candidate<D>& a, const Candidate<D>& b) {
+  return {Select(m, a.point, b.point), Select(m, a.normal, b.normal),
+          Select(m, a.gradient, b.gradient), Select(m, a.hessian, b.hessian),
+          hn::IfThenElse(m, a.error, b.error)};
+}
+
+/// One vector of queries: ExactSolver's state and steps, with masks for its branches.
+template <class D>
+class LaneSolver {
+  using T = hn::TFromD<D>;
+  using V = hn::Vec<D>;
+  using M = hn::Mask<D>;
+
+ public:
+  LaneSolver(D d, const LaneProblem<T>& problem, const Vec3<D>& y, T sign)
+      : d_(d),
+        problem_(problem),
+        primal_(d, problem.primal),
+        dual_(d, problem.dual),
+        y_(y),
+        sign_(hn::Set(d, sign)),
+        // exact_rules::absoluteTolerance, per lane.
+        tolerance_(hn::MulAdd(
+            hn::Set(d, T(rules::kRoundingFloorUlps) * std::numeric_limits<T>::epsilon()),
+            hn::Add(hn::Sqrt(Dot(y, y)), hn::Set(d, problem.size)), hn::Set(d, problem.tolerance))),
+        iterations_(hn::Zero(d)) {}
+
+  V iterations() const { return iterations_; }
+
+  /// ExactSolver::candidateOnRay; `gauge` gets G(ray).
+  Candidate<D> candidateOnRay(const Vec3<D>& ray, V* gauge = nullptr) const {
+    const NormEval<D> e = Evaluate(d_, primal_, ray);
+    if (gauge != nullptr) *gauge = e.value;
+    Candidate<D> c;
+    const V inv_value = hn::Div(hn::Set(d_, 1), e.value);
+    c.point = Times(inv_value, ray);
+    c.gradient = e.gradient;
+    c.hessian = {hn::Mul(e.value, e.hessian.xx), hn::Mul(e.value, e.hessian.xy),
+                 hn::Mul(e.value, e.hessian.xz), hn::Mul(e.value, e.hessian.yy),
+                 hn::Mul(e.value, e.hessian.yz), hn::Mul(e.value, e.hessian.zz)};
+    const V length = hn::Sqrt(Dot(e.gradient, e.gradient));
+    const auto positive = hn::Gt(length, hn::Zero(d_));
+    const V inv_length = hn::Div(hn::Set(d_, 1), hn::IfThenElse(positive, length, hn::Set(d_, 1)));
+    c.normal = Select(positive, Times(inv_length, e.gradient),
+                      Vec3<D>{hn::Zero(d_), hn::Zero(d_), hn::Set(d_, 1)});
+    c.error = errorAt(c.point, c.normal);
+    return c;
+  }
+
+  /// ExactSolver::refine on the lanes of `lanes`: Newton in the smooth formulation, and where
+  /// that stalls, in the other, from where the first stopped and then from the start; each
+  /// start has at most exact_rules::kIterationsPerStart iterations of the caller's cap. Returns the
+  /// candidate; `converged` gets the lanes whose error reached the tolerance.
+  Candidate<D> refine(const Candidate<D>& start, M lanes, M* converged) {
+    const V limit = hn::Min(hn::Add(iterations_, hn::Set(d_, T(rules::kIterationsPerStart))),
+                            hn::Set(d_, T(problem_.max_iterations)));
+    const bool primal_first = problem_.primal_first;
+    Candidate<D> c =
+        primal_first ? newtonPrimal(start, lanes, limit) : newtonDual(start, lanes, limit);
+    M retry = stillGoing(lanes, c, limit);
+    if (!hn::AllFalse(d_, retry)) {
+      if (!primal_first) c = Select(retry, asPrimal(c), c);
+      const Candidate<D> warm =
+          primal_first ? newtonDual(c, retry, limit) : newtonPrimal(c, retry, limit);
+      c = Select(hn::And(retry, betterThanUnconverged(warm, c)), warm, c);
+      retry = stillGoing(retry, c, limit);
+      if (!hn::AllFalse(d_, retry)) {
+        const Candidate<D> fresh =
+            primal_first ? newtonDual(start, retry, limit) : newtonPrimal(start, retry, limit);
+        c = Select(hn::And(retry, betterThanUnconverged(fresh, c)), fresh, c);
+      }
+    }
+    *converged = hn::And(lanes, hn::Le(c.error, tolerance_));
+    return c;
+  }
+
+  /// ExactSolver::errorAt: paper Eq. 7 with d = ±‖Q − N‖; infinite where not finite.
+  V errorAt(const Vec3<D>& point, const Vec3<D>& normal) const {
+    const Vec3<D> to_query = Minus(y_, point);
+    const V distance = hn::Mul(sign_, hn::Sqrt(Dot(to_query, to_query)));
+    const Vec3<D> residual = Minus(PlusTimes(point, distance, normal), y_);
+    const V e = hn::Sqrt(Dot(residual, residual));
+    return hn::IfThenElse(hn::IsFinite(e), e, hn::Set(d_, std::numeric_limits<T>::infinity()));
+  }
+
+ private:
+  M stillGoing(M lanes, const Candidate<D>& c, V limit) const {
+    return hn::And(lanes, hn::And(hn::Gt(c.error, tolerance_), hn::Lt(iterations_, limit)));
+  }
+
+  /// ExactSolver::isBetter(a, b) where b has not converged: a has, or its error is smaller.
+  M betterThanUnconverged(const Candidate<D>& a, const Candidate<D>& b) const {
+    return hn::Or(hn::Le(a.error, tolerance_), hn::Lt(a.error, b.error));
+  }
+
+  /// The end of ExactSolver::newtonDual: the primal's view of the dual's point (its gradient
+  /// and Hessian, for primal iterations that follow), keeping the dual's error where it is
+  /// the smaller.
+  Candidate<D> asPrimal(const Candidate<D>& c) const {
+    Candidate<D> out = candidateOnRay(c.point);
+    const M keep_dual = hn::Gt(out.error, c.error);
+    out.point = Select(keep_dual, c.point, out.point);
+    out.normal = Select(keep_dual, c.normal, out.normal);
+    out.error = hn::IfThenElse(keep_dual, c.error, out.error);
+    return out;
+  }
+
+  /// ExactSolver::stayInOctant.
+  Vec3<D> stayInOctant(const Vec3<D>& from, const Vec3<D>& to) const {
+    const V zero = hn::Zero(d_), tenth = hn::Set(d_, T(rules::kOctantShrink));
+    // !(to ≥ 0) also catches NaN, as in the scalar code.
+    return {hn::IfThenElse(hn::Ge(to.x, zero), to.x, hn::Mul(tenth, from.x)),
+            hn::IfThenElse(hn::Ge(to.y, zero), to.y, hn::Mul(tenth, from.y)),
+            hn::IfThenElse(hn::Ge(to.z, zero), to.z, hn::Mul(tenth, from.z))};
+  }
+
+  /// The Newton step δ of the bordered system [A, n; nᵀ, 0]·[δ; λ] = [r; 0] (n a unit normal),
+  /// solved in the tangent plane of n, with ExactSolver::convexified's shift of A applied to
+  /// the tangent block: where its smallest eigenvalue is below kConvexifyBelow·scale (and
+  /// finite), shift it to kConvexifyTo·scale (exact_rules.h).
+  Vec3<D> tangentStep(const Sym3<D>& a, const Vec3<D>& n, const Vec3<D>& r, V scale) const {
+    const V zero = hn::Zero(d_), one = hn::Set(d_, 1);
+    // t1 = n × helper, helper = x̂ where |n_x| < 0.6, else ŷ; t2 = n × t1.
+    const auto use_x = hn::Lt(hn::Abs(n.x), hn::Set(d_, T(rules::kTangentHelperSwitch)));
+    Vec3<D> t1 = Select(use_x, Vec3<D>{zero, n.z, hn::Neg(n.y)}, Vec3<D>{hn::Neg(n.z), zero, n.x});
+    t1 = Times(hn::Div(one, hn::Sqrt(Dot(t1, t1))), t1);
+    const Vec3<D> t2 = Cross(n, t1);
+    V b11 = Dot(t1, a.times(t1)), b22 = Dot(t2, a.times(t2));
+    const V b12 = Dot(t1, a.times(t2));
+    const V mean = hn::Mul(hn::Set(d_, T(0.5)), hn::Add(b11, b22));
+    const V half_gap = Hypot(hn::Mul(hn::Set(d_, T(0.5)), hn::Sub(b11, b22)), b12);
+    const V lowest = hn::Sub(mean, half_gap);
+    const auto shift_it =
+        hn::And(hn::Lt(lowest, hn::Mul(hn::Set(d_, T(rules::kConvexifyBelow)), scale)),
+                hn::IsFinite(lowest));
+    const V shift = hn::IfThenElseZero(
+        shift_it, hn::Sub(hn::Mul(hn::Set(d_, T(rules::kConvexifyTo)), scale), lowest));
+    b11 = hn::Add(b11, shift);
+    b22 = hn::Add(b22, shift);
+    const V c1 = Dot(t1, r), c2 = Dot(t2, r);
+    const V inv_det = hn::Div(one, hn::NegMulAdd(b12, b12, hn::Mul(b11, b22)));
+    const V alpha = hn::Mul(hn::NegMulAdd(b12, c2, hn::Mul(b22, c1)), inv_det);
+    const V beta = hn::Mul(hn::NegMulAdd(b12, c1, hn::Mul(b11, c2)), inv_det);
+    return PlusTimes(Times(alpha, t1), beta, t2);
+  }
+
+  /// √(a² + b²) without overflow (the tangent block can be huge near a crease).
+  V Hypot(V a, V b) const {
+    const V m = hn::Max(hn::Abs(a), hn::Abs(b));
+    const auto positive = hn::Gt(m, hn::Zero(d_));
+    const V inv = hn::Div(hn::Set(d_, 1), hn::IfThenElse(positive, m, hn::Set(d_, 1)));
+    const V sa = hn::Mul(a, inv), sb = hn::Mul(b, inv);
+    return hn::Mul(m, hn::Sqrt(hn::MulAdd(sa, sa, hn::Mul(sb, sb))));
+  }
+
+  /// The step halving of both formulations (ExactSolver::tryStep and the loop in newtonDual):
+  /// on the lanes of `lanes` whose step is finite, attempt(step, trying) tries step, step/2, …
+  /// (exact_rules::kStepTrials in all) until it improves, applying the trial on the lanes it
+  /// accepts and returning them.
+  /// Returns the lanes that improved.
+  template <typename Attempt>
+  M halveUntilBetter(M lanes, Vec3<D> step, const Attempt& attempt) const {
+    M trying = hn::And(lanes, AllFinite(step));
+    M improved = hn::MaskFromVec(hn::Zero(d_));
+    for (int trial_step = 0; trial_step < rules::kStepTrials && !hn::AllFalse(d_, trying);
+         ++trial_step) {
+      const M accepted = attempt(step, trying);
+      improved = hn::Or(improved, accepted);
+      trying = hn::AndNot(accepted, trying);
+      step = Times(hn::Set(d_, T(0.5)), step);
+    }
+    return improved;
+  }
+
+  /// ExactSolver::newtonPrimal with its step halving (tryStep).
+  Candidate<D> newtonPrimal(Candidate<D> c, M lanes, V limit) {
+    const V one = hn::Set(d_, 1);
+    M active = stillGoing(lanes, c, limit);
+    while (!hn::AllFalse(d_, active)) {
+      iterations_ = hn::Add(iterations_, hn::IfThenElseZero(active, one));
+      const Vec3<D> to_query = Minus(y_, c.point);
+      const V mu = hn::Div(Dot(c.gradient, to_query), Dot(c.gradient, c.gradient));
+      const Vec3<D> residual = Minus(to_query, Times(mu, c.gradient));
+      Sym3<D> a = {hn::MulAdd(mu, c.hessian.xx, one), hn::Mul(mu, c.hessian.xy),
+                   hn::Mul(mu, c.hessian.xz),         hn::MulAdd(mu, c.hessian.yy, one),
+                   hn::Mul(mu, c.hessian.yz),         hn::MulAdd(mu, c.hessian.zz, one)};
+      const Vec3<D> step = tangentStep(a, c.normal, residual, one);
+      // The trial point is re-projected radially onto the surface (candidateOnRay).
+      const M improved = halveUntilBetter(active, step, [&](const Vec3<D>& s, M trying) {
+        const Vec3<D> p = stayInOctant(c.point, Plus(c.point, s));
+        const M valid = hn::And(AllFinite(p), hn::Gt(Dot(p, p), hn::Zero(d_)));
+        const Candidate<D> trial = candidateOnRay(p);
+        const M accept = hn::And(hn::And(trying, valid), hn::Lt(trial.error, c.error));
+        c = Select(accept, trial, c);
+        return accept;
+      });
+      active = stillGoing(improved, c, limit);
+    }
+    return c;
+  }
+
+  /// ExactSolver::newtonDual: the iterate is the unit normal n, its surface point ∇h(n).
+  Candidate<D> newtonDual(Candidate<D> c, M lanes, V limit) {
+    const V one = hn::Set(d_, 1);
+    Vec3<D> n = c.normal;
+    NormEval<D> e = Evaluate(d_, dual_, n);
+    M active = stillGoing(lanes, c, limit);
+    while (!hn::AllFalse(d_, active)) {
+      iterations_ = hn::Add(iterations_, hn::IfThenElseZero(active, one));
+      const Vec3<D>& point = e.gradient;
+      const V distance = Dot(n, Minus(y_, point));
+      const Vec3<D> residual = Minus(Minus(y_, point), Times(distance, n));
+      const Sym3<D> a = {
+          hn::Add(e.hessian.xx, distance), e.hessian.xy, e.hessian.xz,
+          hn::Add(e.hessian.yy, distance), e.hessian.yz, hn::Add(e.hessian.zz, distance)};
+      const Vec3<D> step = tangentStep(a, n, residual, hn::Abs(distance));
+      // The trial normal is re-normalised; its surface point is ∇h of it.
+      const M improved = halveUntilBetter(active, step, [&](const Vec3<D>& s, M trying) {
+        Vec3<D> trial_n = stayInOctant(n, Plus(n, s));
+        trial_n = Times(hn::Div(one, hn::Sqrt(Dot(trial_n, trial_n))), trial_n);
+        const NormEval<D> trial = Evaluate(d_, dual_, trial_n);
+        const V error = errorAt(trial.gradient, trial_n);
+        const M accept = hn::And(trying, hn::Lt(error, c.error));
+        c.point = Select(accept, trial.gradient, c.point);
+        c.normal = Select(accept, trial_n, c.normal);
+        c.error = hn::IfThenElse(accept, error, c.error);
+        n = Select(accept, trial_n, n);
+        e = Select(accept, trial, e);
+        return accept;
+      });
+      active = stillGoing(improved, c, limit);
+    }
+    return c;
+  }
+
+  D d_;
+  const LaneProblem<T>& problem_;
+  NormLanes<D> primal_, dual_;
+  Vec3<D> y_;
+  V sign_, tolerance_;
+  V iterations_;  // all starts share one count, as in ExactSolver
+};
+
+template <class D>
+Vec3<D> LoadVec3(D d, const hn::TFromD<D>* const* arrays, std::size_t i) {
+  return {hn::LoadU(d, arrays[0] + i), hn::LoadU(d, arrays[1] + i), hn::LoadU(d, arrays[2] + i)};
+}
+
+template <class D>
+void StoreAnswer(D d, const Candidate<D>& c, hn::Mask<D> solved, hn::Mask<D> inside,
+                 const LaneArrays<hn::TFromD<D>>& lanes, std::size_t i) {
+  hn::StoreU(c.point.x, d, lanes.point[0] + i);
+  hn::StoreU(c.point.y, d, lanes.point[1] + i);
+  hn::StoreU(c.point.z, d, lanes.point[2] + i);
+  hn::StoreU(c.normal.x, d, lanes.normal[0] + i);
+  hn::StoreU(c.normal.y, d, lanes.normal[1] + i);
+  hn::StoreU(c.normal.z, d, lanes.normal[2] + i);
+  hn::StoreU(c.error, d, lanes.error + i);
+  // Masks have no portable per-lane read: go through a vector of status codes.
+  using T = hn::TFromD<D>;
+  const hn::Vec<D> code = hn::IfThenElse(
+      inside, hn::Set(d, T(kLaneInside)),
+      hn::IfThenElse(solved, hn::Set(d, T(kLaneSolved)), hn::Set(d, T(kLaneScalar))));
+  HWY_ALIGN T codes[kMaxLanes];
+  static_assert(hn::MaxLanes(D()) <= kMaxLanes, "kMaxLanes is too small for this target");
+  hn::Store(code, d, codes);
+  for (std::size_t k = 0; k < hn::Lanes(d); ++k) lanes.status[i + k] = std::int32_t(codes[k]);
+}
+
+/// The outside pass on one vector of lanes at i.
+template <class D>
+void SolveOutsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
+                        const LaneArrays<hn::TFromD<D>>& lanes, std::size_t i) {
+  using T = hn::TFromD<D>;
+  const Vec3<D> y = LoadVec3(d, lanes.query, i);
+  LaneSolver<D> solver(d, problem, y, T(1));
+  hn::Vec<D> gauge;
+  Candidate<D> start = solver.candidateOnRay(y, &gauge);
+  const auto inside = hn::Lt(gauge, hn::Set(d, 1));
+  const auto outside = hn::Not(inside);
+  if (lanes.hint[0] != nullptr) {
+    // The caller's warm start goes first outside (ExactSolver::solve); NaN or 0 = none.
+    const Vec3<D> hint = LoadVec3(d, lanes.hint, i);
+    const auto warm =
+        hn::And(hn::And(outside, AllFinite(hint)), hn::Gt(Dot(hint, hint), hn::Zero(d)));
+    if (!hn::AllFalse(d, warm)) start = Select(warm, solver.candidateOnRay(hint), start);
+  }
+  hn::Mask<D> solved;
+  const Candidate<D> c = solver.refine(start, outside, &solved);
+  StoreAnswer(d, c, solved, inside, lanes, i);
+}
+
+/// The inside pass on one vector of lanes at i.
+template <class D>
+void SolveInsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
+                       const LaneArrays<hn::TFromD<D>>& lanes, std::size_t i) {
+  using T = hn::TFromD<D>;
+  using V = hn::Vec<D>;
+  using M = hn::Mask<D>;
+  const V zero = hn::Zero(d), one = hn::Set(d, 1);
+  const Vec3<D> y = LoadVec3(d, lanes.query, i);
+  LaneSolver<D> solver(d, problem, y, T(-1));
+  V gauge;
+  const Candidate<D> radial = solver.candidateOnRay(y, &gauge);
+
+  // What only the scalar solver does: deep inside (g < 0.5: the centre's candidates), and on
+  // or near a coordinate plane (tilted starts).
+  const V near_plane = hn::Set(d, rules::nearPlaneFraction<T>());
+  M work = hn::And(hn::Lt(gauge, one), hn::Ge(gauge, hn::Set(d, T(rules::kDeepGauge))));
+  work = hn::And(work, hn::Gt(y.x, hn::Mul(near_plane, hn::Set(d, problem.radii[0]))));
+  work = hn::And(work, hn::Gt(y.y, hn::Mul(near_plane, hn::Set(d, problem.radii[1]))));
+  work = hn::And(work, hn::Gt(y.z, hn::Mul(near_plane, hn::Set(d, problem.radii[2]))));
+  if (hn::AllFalse(d, work)) {
+    StoreAnswer(d, radial, hn::MaskFromVec(zero), hn::MaskFromVec(zero), lanes, i);
+    return;
+  }
+
+  M all_converged;
+  Candidate<D> best = solver.refine(radial, work, &all_converged);
+  // The three axis projections (ExactSolver::axisProjections): move one coordinate of Q
+  // outward until G = 1, in the primal's scaled coordinates u = y/a.
+  const NestedNorm<T>& g = problem.primal;
+  const V s0 = hn::Set(d, g.scale[0]), s1 = hn::Set(d, g.scale[1]), s2 = hn::Set(d, g.scale[2]);
+  const V p1 = hn::Set(d, g.p1), p2 = hn::Set(d, g.p2);
+  const V inv_p1 = hn::Set(d, g.inv_p1), inv_p2 = hn::Set(d, g.inv_p2);
+  auto complement = [&](V t, V p, V inv_p) {  // s with ‖(t, s)‖_p = 1, t ≤ 1
+    return Pow(d, hn::Max(zero, hn::Sub(one, Pow(d, t, p))), inv_p);
+  };
+  const V u0 = hn::Mul(y.x, s0), u1 = hn::Mul(y.y, s1), u2 = hn::Mul(y.z, s2);
+  const V r = PNorm2WithPowers(d, u0, u1, p1, inv_p1, hn::Sub(p1, one)).norm;
+  const V r_target = complement(u2, p2, inv_p2);
+  const V safe_target = hn::IfThenElse(hn::Gt(r_target, zero), r_target, one);
+  auto move = [&](V other, V own) {
+    return hn::IfThenElse(hn::Lt(other, r_target),
+                          hn::Mul(r_target, complement(hn::Div(other, safe_target), p1, inv_p1)),
+                          own);
+  };
+  const Vec3<D> starts[3] = {{hn::Div(move(u1, u0), s0), y.y, y.z},
+                             {y.x, hn::Div(move(u0, u1), s1), y.z},
+                             {y.x, y.y, hn::Div(complement(hn::Min(r, one), p2, inv_p2), s2)}};
+  for (const Vec3<D>& start : starts) {
+    M converged;
+    const Candidate<D> c = solver.refine(solver.candidateOnRay(start), work, &converged);
+    all_converged = hn::And(all_converged, converged);
+    // ExactSolver::isBetter between converged candidates: strictly nearer wins.
+    const Vec3<D> to_c = Minus(y, c.point), to_best = Minus(y, best.point);
+    best = Select(hn::And(converged, hn::Lt(Dot(to_c, to_c), Dot(to_best, to_best))), c, best);
+  }
+
+  // Deep in an elongated shape the scalar solver adds the cross-sections' diagonal starts:
+  // where the answer is farther than a quarter of a cross-section's smaller radius.
+  const Vec3<D> to_best = Minus(y, best.point);
+  const V best_distance = hn::Sqrt(Dot(to_best, to_best));
+  const T a0 = problem.radii[0], a1 = problem.radii[1], a2 = problem.radii[2];
+  // (of every cross-section's radii: the smallest radius is a lower bound on all of them)
+  const T quarter_min = T(rules::kDiagonalStartDepth) * std::min({a0, a1, a2});
+  const M deep = hn::Gt(best_distance, hn::Set(d, quarter_min));
+  const M over_budget = hn::Gt(solver.iterations(), hn::Set(d, T(problem.max_iterations)));
+  const M solved = hn::AndNot(hn::Or(deep, over_budget), hn::And(work, all_converged));
+  StoreAnswer(d, best, solved, hn::MaskFromVec(zero), lanes, i);
+}
+
+template <typename T>
+void SolveLanes(const LaneProblem<T>& problem, const LaneArrays<T>& lanes, std::size_t n,
+                bool inside_pass) {
+  const hn::ScalableTag<T> d;
+  const std::size_t step = hn::Lanes(d);
+  for (std::size_t i = 0; i < n; i += step) {
+    if (inside_pass) {
+      SolveInsideVector(d, problem, lanes, i);
+    } else {
+      SolveOutsideVector(d, problem, lanes, i);
+    }
+  }
+}
+
+void SolveLanesFloat(const LaneProblem<float>& problem, const LaneArrays<float>& lanes,
+                     std::size_t n, bool inside_pass) {
+  SolveLanes(problem, lanes, n, inside_pass);
+}
+void SolveLanesDouble(const LaneProblem<double>& problem, const LaneArrays<double>& lanes,
+                      std::size_t n, bool inside_pass) {
+  SolveLanes(problem, lanes, n, inside_pass);
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace detail
+}  // namespace fcl_superellipsoid
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace fcl_superellipsoid {
+namespace detail {
+
+HWY_EXPORT(SolveLanesFloat);
+HWY_EXPORT(SolveLanesDouble);
+
+void solveLanes(const LaneProblem<float>& problem, const LaneArrays<float>& lanes, std::size_t n,
+                bool inside_pass) {
+  HWY_DYNAMIC_DISPATCH(SolveLanesFloat)(problem, lanes, n, inside_pass);
+}
+void solveLanes(const LaneProblem<double>& problem, const LaneArrays<double>& lanes, std::size_t n,
+                bool inside_pass) {
+  HWY_DYNAMIC_DISPATCH(SolveLanesDouble)(problem, lanes, n, inside_pass);
+}
+
+std::vector<std::pair<std::int64_t, std::string>> simdTargetsOfThisCpu() {
+  std::vector<std::pair<std::int64_t, std::string>> out;
+  for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
+    out.emplace_back(target, hwy::TargetName(target));
+  }
+  return out;
+}
+
+void restrictSimdTargets(std::int64_t targets) { hwy::SetSupportedTargetsForTest(targets); }
+
+}  // namespace detail
+
+const char* simdInstructionSet() {
+  const std::int64_t targets = hwy::SupportedTargets() & HWY_TARGETS;
+  return hwy::TargetName(targets & -targets);  // the lowest bit is the best target
+}
+}  // namespace fcl_superellipsoid
+#endif  // HWY_ONCE

@@ -1,0 +1,79 @@
+#ifndef FCL_SUPERELLIPSOID_SRC_BATCH_BATCH_KERNEL_H
+#define FCL_SUPERELLIPSOID_SRC_BATCH_BATCH_KERNEL_H
+
+// Internal: the Exact solver's Newton iteration on SIMD lanes, one vertex per lane, for the
+// batched queries (batch_distance.cpp). The body is batch/batch_kernel.cpp, compiled once per
+// instruction set with Highway and chosen at run time for the CPU that runs it.
+//
+// The kernel does what the scalar solver (solvers/exact_solver.cpp) does on its common path, with
+// the same formulas, and hands every other case back to it:
+//  - outside pass: Newton in the shape's smooth formulation (primal where ε ≤ 1, dual where
+//    ε ≥ 1: primalIsSmoother in solvers.h) and, where it stalls, in the other (ExactSolver::
+//    refine), from the caller's warm start, if any, else from the radial projection. Outside the
+//    problem is convex, so a start that converges gives the scalar solver's answer to the
+//    tolerance. Lanes found inside are marked kLaneInside.
+//  - inside pass: Newton from the radial projection and the three axis projections (the
+//    scalar solver's first four starts); the nearest converged answer wins.
+// A lane goes back to the scalar solver (kLaneScalar) whenever the scalar solver would do
+// more than that: a start that converges in neither formulation (the scalar solver then tries
+// further starts and, outside, the bracketed projection), an inside query near a coordinate plane
+// (tilted starts), deep inside (the centre's candidates, and the cross-section diagonals of
+// elongated shapes), the exact centre, or an iteration count over the caller's cap.
+//
+// Powers are exp(p·log x) with Highway's vectorised exp/log (≤ 4 ulp). Every power the solver
+// takes is of a ratio t ∈ [0, 1] inside a p-norm m·(1 + t^p)^(1/p): an error δ in t^p moves the
+// norm by (1/p)·t^p/(1 + t^p)·δ ≤ δ/p, and the rounding of p·log t grows δ only by |log t^p|,
+// whose product with t^p stays below 1/e. So the nested norms come out within a few ulps.
+
+#include <cstddef>
+#include <cstdint>
+
+#include "shape/nested_norm.h"
+
+namespace fcl_superellipsoid {
+namespace detail {
+
+/// The widest vector the kernel uses, in lanes (AVX-512 with float). Lane arrays need room for
+/// n rounded up to a multiple of this; the caller fills the padding with copies of a real lane.
+constexpr std::size_t kMaxLanes = 16;
+
+/// What the kernel needs of the shape and the options.
+template <typename S>
+struct LaneProblem {
+  NestedNorm<S> primal, dual;  // G and the support function h (nested_norm.h)
+  Vector3<S> radii;
+  bool primal_first;  // the smooth formulation for these exponents
+  S tolerance;  // options.tolerance × size, length units (the rounding floor is added per lane)
+  S size;       // the largest radius
+  int max_iterations;  // the caller's cap on all starts together
+};
+
+enum LaneStatus : std::int32_t {
+  kLaneSolved = 0,  // point, normal and error hold the answer
+  kLaneInside = 1,  // outside pass: the vertex is inside; give it to the inside pass
+  kLaneScalar = 2,  // the scalar solver must answer this vertex
+};
+
+/// Structure-of-arrays lanes, first octant of the shape's frame.
+template <typename S>
+struct LaneArrays {
+  const S* query[3];  // in: |Q| per coordinate
+  const S* hint[3];   // in (outside pass): |warm start| per coordinate, NaN = none; or nullptr
+  S* point[3];        // out: the nearest surface point
+  S* normal[3];       // out: the unit outward normal there
+  S* error;           // out: paper Eq. 7 error of the answer
+  std::int32_t* status;
+};
+
+/// Runs the pass on lanes [0, n) with the best instruction set of this CPU (Highway dynamic
+/// dispatch). Lanes of the inside pass must be inside the shape (kLaneInside from the outside
+/// pass).
+void solveLanes(const LaneProblem<float>& problem, const LaneArrays<float>& lanes, std::size_t n,
+                bool inside_pass);
+void solveLanes(const LaneProblem<double>& problem, const LaneArrays<double>& lanes, std::size_t n,
+                bool inside_pass);
+
+}  // namespace detail
+}  // namespace fcl_superellipsoid
+
+#endif  // FCL_SUPERELLIPSOID_SRC_BATCH_BATCH_KERNEL_H

@@ -1,6 +1,0 @@
-// FCL's collision table for GJKSolver_libccd<double>, instantiated here once (see fcl_tables.h).
-#include "fcl_superellipsoid/fcl_integration.h"
-#include "fcl_tables.h"
-
-FSE_DEFINE_TABLE(CollisionFunctionMatrix, getCollisionFunctionLookTable, collision_matrix,
-                 collisionEntry, double, registerCollisionTableDouble)

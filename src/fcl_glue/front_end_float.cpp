@@ -1,0 +1,4 @@
+// The front end for float (see front_end.h).
+#include "fcl_glue/front_end.h"
+
+FSE_INSTANTIATE_FRONT_END(float)

@@ -1,0 +1,94 @@
+#ifndef FCL_SUPERELLIPSOID_SRC_FCL_GLUE_PAIRS_PAIR_H
+#define FCL_SUPERELLIPSOID_SRC_FCL_GLUE_PAIRS_PAIR_H
+
+// Internal: what every pair kind shares. A query arrives as (o1, tf1, o2, tf2) in the caller's
+// order; a pair kind sees it as (superellipsoid, other) and reports a PairHit; the writers
+// below put that hit into FCL's result in the caller's order, with FCL's conventions
+// (fcl_integration.h documents them for the user).
+
+#include <fcl/narrowphase/collision_request.h>
+#include <fcl/narrowphase/collision_result.h>
+#include <fcl/narrowphase/distance_request.h>
+#include <fcl/narrowphase/distance_result.h>
+
+#include "fcl_superellipsoid/superellipsoid.h"
+
+namespace fcl_superellipsoid {
+namespace detail {
+
+/// The pair as (superellipsoid, other), remembering the caller's order.
+template <typename S>
+struct Pair {
+  const fcl::CollisionGeometry<S>* o1 = nullptr;  // the caller's order
+  const fcl::CollisionGeometry<S>* o2 = nullptr;
+  const Superellipsoid<S>* shape = nullptr;
+  const fcl::Transform3<S>* X_WS = nullptr;
+  const fcl::CollisionGeometry<S>* other = nullptr;
+  const fcl::Transform3<S>* X_WO = nullptr;
+  bool shape_first = true;  // the shape is o1
+};
+
+/// The pair, or one with shape == nullptr if neither or both geometries are superellipsoids
+/// (superellipsoid–superellipsoid is not answered yet).
+template <typename S>
+Pair<S> makePair(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1,
+                 const fcl::CollisionGeometry<S>* o2, const fcl::Transform3<S>& tf2) {
+  const auto* s1 = dynamic_cast<const Superellipsoid<S>*>(o1);
+  const auto* s2 = dynamic_cast<const Superellipsoid<S>*>(o2);
+  if (s1 != nullptr && s2 == nullptr) return {o1, o2, s1, &tf1, o2, &tf2, true};
+  if (s2 != nullptr && s1 == nullptr) return {o1, o2, s2, &tf2, o1, &tf1, false};
+  return {o1, o2};
+}
+
+/// A hit between the shape and the other geometry, in world coordinates: the point on the
+/// other geometry, the point on the shape, the shape's outward normal, the other's primitive
+/// (fcl::DistanceResult::NONE-like −1 where it has none).
+template <typename S>
+struct PairHit {
+  S distance;
+  Vector3<S> on_other, on_shape, normal;
+  int other_primitive;
+};
+
+/// Offers a hit to FCL's distance result (which keeps the smallest): b1/b2 and the nearest
+/// points in the caller's order; −1 for a penetration when the request is unsigned.
+template <typename S>
+void updateDistance(const Pair<S>& pair, const PairHit<S>& hit,
+                    const fcl::DistanceRequest<S>& request, fcl::DistanceResult<S>& result) {
+  constexpr int kNone = fcl::DistanceResult<S>::NONE;
+  const S d = (hit.distance < S(0) && !request.enable_signed_distance) ? S(-1) : hit.distance;
+  const int b1 = pair.shape_first ? kNone : hit.other_primitive;
+  const int b2 = pair.shape_first ? hit.other_primitive : kNone;
+  if (request.enable_nearest_points) {
+    const Vector3<S>& p1 = pair.shape_first ? hit.on_shape : hit.on_other;
+    const Vector3<S>& p2 = pair.shape_first ? hit.on_other : hit.on_shape;
+    result.update(d, pair.o1, pair.o2, b1, b2, p1, p2);
+  } else {
+    result.update(d, pair.o1, pair.o2, b1, b2);
+  }
+}
+
+/// Adds a contact at pos. FCL's normal points from o1 to o2: the other geometry leaves the
+/// shape along the shape's outward normal, so that is the normal when the shape is o1, and its
+/// opposite otherwise. Without details, pos, normal and depth are zero.
+template <typename S>
+void addContact(const Pair<S>& pair, const PairHit<S>& hit, const Vector3<S>& pos,
+                bool with_details, fcl::CollisionResult<S>& result) {
+  constexpr int kNone = fcl::Contact<S>::NONE;
+  fcl::Contact<S> c(pair.o1, pair.o2, pair.shape_first ? kNone : hit.other_primitive,
+                    pair.shape_first ? hit.other_primitive : kNone);
+  c.pos.setZero();
+  c.normal.setZero();
+  c.penetration_depth = S(0);
+  if (with_details) {
+    c.pos = pos;
+    c.normal = pair.shape_first ? hit.normal : Vector3<S>(-hit.normal);
+    c.penetration_depth = -hit.distance;
+  }
+  result.addContact(c);
+}
+
+}  // namespace detail
+}  // namespace fcl_superellipsoid
+
+#endif  // FCL_SUPERELLIPSOID_SRC_FCL_GLUE_PAIRS_PAIR_H

@@ -1,4 +1,0 @@
-// The front end for float (see front_end.h).
-#include "front_end.h"
-
-FSE_INSTANTIATE_FRONT_END(float)

@@ -1,0 +1,155 @@
+#ifndef FCL_SUPERELLIPSOID_SRC_SHAPE_NESTED_NORM_H
+#define FCL_SUPERELLIPSOID_SRC_SHAPE_NESTED_NORM_H
+
+// Internal: the nested p-norm behind both faces of a superellipsoid, inline so the solvers'
+// inner loops see through it.
+//
+//   N(w) = ‖( ‖(s1·w1, s2·w2)‖_p1, s3·w3 )‖_p2,   w in the first octant (w_i ≥ 0).
+//
+// Primal (the gauge G):       s = 1/a, p1 = 2/ε1,        p2 = 2/ε2.
+// Dual (the support fn. h):   s = a,   p1 = 2/(2 − ε1),  p2 = 2/(2 − ε2).
+// (docs/math.md: h is the gauge of the "dual" superellipsoid with radii 1/a, exponents 2 − ε.)
+//
+// Both are convex and 1-homogeneous; a level with exponent p ≥ 2 is C² with a bounded
+// Hessian, a level with p < 2 has a Hessian that grows like t^(p−2) near that level's
+// coordinate planes. The primal is smooth where ε ≤ 1, the dual where ε ≥ 1.
+//
+// Each p-norm is evaluated after dividing by its largest argument, so every power is of a
+// ratio in [0, 1] and nothing overflows (ε → 0, far points, extreme radii).
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "fcl_superellipsoid/superellipsoid.h"
+
+namespace fcl_superellipsoid {
+namespace detail {
+
+/// ‖(a, b)‖_p for a, b ≥ 0, evaluated as m·(1 + (lo/m)^p)^(1/p) with m = max(a, b).
+template <typename S>
+inline S pnorm2(S a, S b, S p, S inv_p) {
+  const S m = std::max(a, b);
+  if (m == S(0)) return S(0);
+  const S lo = std::min(a, b);
+  return m * std::pow(S(1) + std::pow(lo / m, p), inv_p);
+}
+
+/// ‖(a, b)‖_p with the gradient's powers (a/N)^(p−1), (b/N)^(p−1), for a, b ≥ 0 and p > 1.
+/// The powers come from the norm's own q = (lo/m)^p without another pow():
+///   (m/N)^p = 1/(1 + q)   ⇒  (m/N)^(p−1) = N/(m·(1 + q)),
+///   (lo/N)^p = q/(1 + q)  ⇒  (lo/N)^(p−1) = q·N/(lo·(1 + q)).
+/// Where q is subnormal or underflows (lo/m tiny, p large) it carries too few digits, and
+/// pow() gives (lo/N)^(p−1) instead.
+template <typename S>
+struct PNorm2 {
+  S norm, pow_a, pow_b;  // N, (a/N)^(p−1), (b/N)^(p−1)
+};
+
+template <typename S>
+inline PNorm2<S> pnorm2WithPowers(S a, S b, S p, S inv_p) {
+  const S m = std::max(a, b);
+  if (m == S(0)) return {S(0), S(0), S(0)};
+  const S lo = std::min(a, b);
+  const S q = std::pow(lo / m, p);
+  const S n = m * std::pow(S(1) + q, inv_p);
+  const S pow_m = n / (m * (S(1) + q));
+  S pow_lo = S(0);
+  if (lo > S(0)) {
+    pow_lo =
+        q >= std::numeric_limits<S>::min() ? q * n / (lo * (S(1) + q)) : std::pow(lo / n, p - S(1));
+  }
+  return a >= b ? PNorm2<S>{n, pow_m, pow_lo} : PNorm2<S>{n, pow_lo, pow_m};
+}
+
+/// sgn(c)·|c|^e, the signed power of the parametric form.
+template <typename S>
+inline S signedPow(S c, S e) {
+  const S m = std::pow(std::abs(c), e);
+  return c < S(0) ? -m : m;
+}
+
+template <typename S>
+struct NestedNormEval {
+  S value;
+  Vector3<S> gradient;             // ∂N/∂w, 0-homogeneous, bounded
+  Eigen::Matrix<S, 3, 3> hessian;  // ∂²N/∂w², (−1)-homogeneous; only if requested
+};
+
+template <typename S>
+struct NestedNorm {
+  Vector3<S> scale;
+  S p1, p2, inv_p1, inv_p2;
+
+  /// The primal gauge G of a shape.
+  static NestedNorm gauge(const Superellipsoid<S>& shape) {
+    return {shape.radii().cwiseInverse(), S(2) / shape.eps1(), S(2) / shape.eps2(),
+            shape.eps1() / S(2), shape.eps2() / S(2)};
+  }
+  /// The support function h of a shape.
+  static NestedNorm support(const Superellipsoid<S>& shape) {
+    const S q1 = S(2) / (S(2) - shape.eps1()), q2 = S(2) / (S(2) - shape.eps2());
+    return {shape.radii(), q1, q2, S(1) / q1, S(1) / q2};
+  }
+
+  S value(const Vector3<S>& w) const {
+    const Vector3<S> u = w.cwiseProduct(scale);
+    return pnorm2(pnorm2(u[0], u[1], p1, inv_p1), u[2], p2, inv_p2);
+  }
+
+  /// Value, gradient and (if with_hessian) Hessian at w ≥ 0.
+  NestedNormEval<S> evaluate(const Vector3<S>& w, bool with_hessian) const {
+    NestedNormEval<S> out;
+    const Vector3<S> u = w.cwiseProduct(scale);
+    const PNorm2<S> level1 = pnorm2WithPowers(u[0], u[1], p1, inv_p1);
+    const S r = level1.norm;
+    const PNorm2<S> level2 = pnorm2WithPowers(r, u[2], p2, inv_p2);
+    out.value = level2.norm;
+    if (!(out.value > S(0))) {  // the origin: N is not differentiable; report zeros
+      out.gradient.setZero();
+      out.hessian.setZero();
+      return out;
+    }
+    // Ratios t ∈ [0, 1] of each argument to its norm, and their powers. With
+    // N(a, b) = ‖(a, b)‖_p:  ∂N/∂a = (a/N)^(p−1),
+    //   ∂²N/∂a² = (p−1)/N·(a/N)^(p−2)·(b/N)^p,  ∂²N/∂a∂b = −(p−1)/N·(a/N)^(p−1)·(b/N)^(p−1)
+    // (using 1 − (a/N)^p = (b/N)^p, which avoids the cancellation).
+    const S t1 = r > S(0) ? u[0] / r : S(0), t2 = r > S(0) ? u[1] / r : S(0);
+    const S tr = r / out.value, t3 = u[2] / out.value;
+    const S r1 = level1.pow_a, r2 = level1.pow_b;    // t1^(p1−1), t2^(p1−1)
+    const S g_r = level2.pow_a, g_3 = level2.pow_b;  // tr^(p2−1), t3^(p2−1)
+    const Vector3<S> grad_u(g_r * r1, g_r * r2, g_3);
+    out.gradient = grad_u.cwiseProduct(scale);
+    if (!with_hessian) return out;
+
+    // (t)^(p−2) = t^(p−1)/t; a floor on t keeps it finite when p < 2 (the Hessian is
+    // unbounded there: this is the singularity the solver works around, not hides).
+    const S floor = std::sqrt(std::numeric_limits<S>::min());
+    auto powMinus2 = [floor](S t, S pow_pm1) { return pow_pm1 / std::max(t, floor); };
+    Eigen::Matrix<S, 3, 3> h_u = Eigen::Matrix<S, 3, 3>::Zero();
+    if (r > S(0)) {
+      const S c1 = (p1 - S(1)) / r;
+      const S r11 = c1 * powMinus2(t1, r1) * (t2 * r2);  // (t2)^p1 = t2·t2^(p1−1)
+      const S r22 = c1 * powMinus2(t2, r2) * (t1 * r1);
+      const S r12 = -c1 * r1 * r2;
+      const S c2 = (p2 - S(1)) / out.value;
+      const S g_rr = c2 * powMinus2(tr, g_r) * (t3 * g_3);
+      const S g_r3 = -c2 * g_r * g_3;
+      h_u(0, 0) = g_rr * r1 * r1 + g_r * r11;
+      h_u(1, 1) = g_rr * r2 * r2 + g_r * r22;
+      h_u(0, 1) = h_u(1, 0) = g_rr * r1 * r2 + g_r * r12;
+      h_u(0, 2) = h_u(2, 0) = g_r3 * r1;
+      h_u(1, 2) = h_u(2, 1) = g_r3 * r2;
+    }
+    const S c2 = (p2 - S(1)) / out.value;
+    h_u(2, 2) = c2 * powMinus2(t3, g_3) * (tr * g_r);
+    out.hessian = scale.asDiagonal() * h_u * scale.asDiagonal();
+    return out;
+  }
+};
+
+}  // namespace detail
+}  // namespace fcl_superellipsoid
+
+#endif  // FCL_SUPERELLIPSOID_SRC_SHAPE_NESTED_NORM_H

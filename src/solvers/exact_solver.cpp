@@ -1,0 +1,408 @@
+// The Exact method: Newton on the optimality (KKT) conditions of
+//
+//     min ‖N − Q‖  subject to N on the surface,
+//
+// in the first octant (the shape is symmetric in each coordinate plane: solve for |Q| and
+// reflect back), in one of two equivalent formulations:
+//
+//  primal  unknowns N, μ:   Q − N = μ·∇G(N),  G(N) = 1;
+//          Newton matrix [I + μ∇²G, ∇G; ∇Gᵀ, 0]. ∇²G is bounded where ε ≤ 1 and grows like
+//          t^(2/ε − 2) near a coordinate plane where ε > 1 (the surface has a curvature
+//          singularity there: the "crease" where the paper's method also loses convergence).
+//  dual    unknowns n (unit outward normal), d:   Q = ∇h(n) + d·n,  ‖n‖ = 1,
+//          with h the support function and ∇h(n) the surface point of normal n;
+//          Newton matrix [∇²h + d·I, n; nᵀ, 0]. h is the gauge of the dual superellipsoid
+//          (radii 1/a, exponents 2 − ε), so ∇²h is bounded exactly where ε ≥ 1.
+//
+// The solver starts in the formulation that is smooth for the shape's exponents and, if
+// Newton stalls there (mixed shapes such as (0.1, 1.9) are singular in both), continues in
+// the other from the best point so far. Every iterate is kept on the surface (primal: radial
+// re-projection N ← N/G(N); dual: N = ∇h(n) lies on it by construction) and inside the first
+// octant (a component that would turn negative shrinks tenfold instead). A step that does not
+// reduce the error is halved, up to four times.
+//
+// Starts: outside, the radial projection (the problem is convex: one minimum; a caller's warm
+// start, Query::hint, goes first and saves the rest when it converges), then, if that
+// stalls, the surface points whose normals point at Q and along the contact direction found
+// (∇h(n), the support point), and the radial projection of Q clamped into the bounding box; if
+// Newton still stalls, the bracketed nested projection of outside_projection.h settles it. Inside,
+// the problem is not convex (points on the medial axis have several nearest points; a box-like
+// shape has a local minimum on each face), so Newton also runs from the three axis
+// projections (closed form: move one coordinate until G = 1), and the nearest converged
+// answer wins; deep inside an elongated shape, also from the diagonals of the cross-sections.
+// Each start has its own share of one iteration budget.
+//
+// Convergence is judged by the paper's error (Eq. 7) so all methods share one yardstick.
+
+#include <Eigen/LU>
+#include <array>
+#include <cmath>
+
+#include "shape/nested_norm.h"
+#include "solvers/exact_rules.h"
+#include "solvers/outside_projection.h"
+#include "solvers/solvers.h"
+
+namespace fcl_superellipsoid {
+namespace detail {
+namespace {
+
+namespace rules = exact_rules;
+
+template <typename S>
+using Matrix4 = Eigen::Matrix<S, 4, 4>;
+template <typename S>
+using Vector4 = Eigen::Matrix<S, 4, 1>;
+
+/// A candidate answer in the first octant.
+template <typename S>
+struct Candidate {
+  Vector3<S> point;                // on the surface
+  Vector3<S> normal;               // unit outward normal at point
+  Vector3<S> gradient;             // ∇G at point
+  Eigen::Matrix<S, 3, 3> hessian;  // ∇²G at point
+  S error = std::numeric_limits<S>::infinity();
+  int iterations = 0;
+};
+
+template <typename S>
+class ExactSolver {
+ public:
+  ExactSolver(const Query<S>& q)
+      : q_(q),
+        y_(q.x.cwiseAbs()),
+        primal_(NestedNorm<S>::gauge(q.shape)),
+        dual_(NestedNorm<S>::support(q.shape)),
+        primal_first_(primalIsSmoother(q.shape)) {}
+
+  PointDistanceResult<S> solve() {
+    const S g_y = primal_.value(y_);
+    if (g_y == S(1)) return finish(candidateOnRay(y_), false);
+    inside_ = g_y < S(1);
+    sign_ = inside_ ? S(-1) : S(1);
+    if (g_y == S(0)) {
+      Candidate<S> centre = solveAtCentre();
+      centre.iterations = iterations_;
+      return finish(centre, true);
+    }
+
+    const bool warm = !inside_ && q_.hint != nullptr && !q_.hint->isZero(S(0));
+    // Outside the problem is convex: a warm start that converges is the answer.
+    Candidate<S> best = refine(candidateOnRay(warm ? Vector3<S>(q_.hint->cwiseAbs()) : y_));
+    if (warm && best.error > q_.tolerance) tryStart(y_, &best);
+    if (!inside_ && best.error > q_.tolerance) {
+      // On elongated shapes the radial start can be far off. The surface points whose normal
+      // points at Q, and along the best answer's contact direction, are better starts.
+      for (const Vector3<S>& direction : {Vector3<S>(y_), Vector3<S>(y_ - best.point)}) {
+        const Vector3<S> n = direction.normalized();
+        if (n.allFinite()) tryStart(dual_.evaluate(n, false).gradient, &best);
+      }
+      // Q clamped into the bounding box, then projected radially: on a cigar-like shape this
+      // lands beside Q along the long axis, away from the sharp tips where Newton stalls.
+      const Vector3<S> clamped = y_.cwiseMin(q_.shape.radii());
+      if (best.error > q_.tolerance && clamped.squaredNorm() > S(0)) tryStart(clamped, &best);
+      if (best.error > q_.tolerance) {
+        // Newton stalled (mixed exponents on an elongated shape). The bracketed projection is
+        // exact; every surface point is at least the distance away, so the nearer point wins
+        // even if its Eq. 7 error, which needs the normal, stays above the tolerance at a crease.
+        const Candidate<S> projected = candidateOnRay(projectOutside(q_.shape, y_));
+        if ((y_ - projected.point).squaredNorm() <= (y_ - best.point).squaredNorm()) {
+          best = projected;
+        }
+      }
+    }
+    if (inside_) {
+      for (const Vector3<S>& start : axisProjections()) tryStart(start, &best);
+      // Deep in an elongated shape the nearest point can lie off the axis directions of the
+      // cross-section through Q (a diamond-like cross-section, ε > 1, is nearest on its
+      // diagonal faces). When the answer so far is farther than a quarter of a cross-section's
+      // smaller radius, start once more along that cross-section's diagonal.
+      const Vector3<S>& a = q_.shape.radii();
+      const S best_distance = (y_ - best.point).norm();
+      for (int i = 0; i < 3; ++i) {
+        const int j = (i + 1) % 3, k = (i + 2) % 3;
+        if (best_distance > S(rules::kDiagonalStartDepth) * std::min(a[j], a[k])) {
+          Vector3<S> start = y_;
+          start[j] += S(0.5) * a[j];
+          start[k] += S(0.5) * a[k];
+          tryStart(start, &best);
+        }
+      }
+      // On a coordinate plane every start above lies on it too, and the plane is a mirror
+      // symmetry: Newton never leaves it, though for ε > 1 the nearest points can be off it
+      // (the plane is a saddle there). Start once more from a point tilted off each such plane.
+      // (One start per such plane, and one off all of them at once for a point on an axis.)
+      Vector3<S> all_tilted = y_;
+      int planes = 0;
+      for (int i = 0; i < 3; ++i) {
+        if (y_[i] > rules::nearPlaneFraction<S>() * q_.shape.radii()[i]) continue;
+        Vector3<S> tilted = y_;
+        tilted[i] += S(0.5) * q_.shape.radii()[i];
+        all_tilted[i] = tilted[i];
+        ++planes;
+        tryStart(tilted, &best);
+      }
+      if (planes > 1) tryStart(all_tilted, &best);
+    }
+    if (g_y < S(rules::kDeepGauge)) {  // deep inside: the centre's candidates may be nearer still
+      const Candidate<S> other = solveAtCentre();
+      if (isBetter(other, best)) best = other;
+    }
+    best.iterations = iterations_;  // all starts share one budget
+    return finish(best, inside_);
+  }
+
+ private:
+  /// The exact centre: every direction is radial, and the nearest point depends on ε (the end
+  /// of the shortest semi-axis for a box-like shape, a face centre for an octahedron-like one).
+  /// The axis tips are stationary points, so they are candidates as they are; Newton runs
+  /// from the radial projections of the diagonal directions. Ties keep the first candidate,
+  /// in the order +x, +y, +z tips, then the diagonals.
+  Candidate<S> solveAtCentre() {
+    Candidate<S> best;
+    for (int i = 0; i < 3; ++i) {
+      Vector3<S> tip = Vector3<S>::Zero();
+      tip[i] = q_.shape.radii()[i];
+      const Candidate<S> c = candidateOnRay(tip);
+      if (i == 0 || (c.point.squaredNorm() < best.point.squaredNorm())) best = c;
+    }
+    for (const Vector3<S>& direction :
+         {Vector3<S>(1, 1, 1), Vector3<S>(1, 1, 0), Vector3<S>(1, 0, 1), Vector3<S>(0, 1, 1)}) {
+      const Candidate<S> c = refine(candidateOnRay(direction));
+      if (c.error <= q_.tolerance && c.point.squaredNorm() < best.point.squaredNorm()) best = c;
+    }
+    return best;
+  }
+
+  /// Runs Newton from a start (the ray's surface point) and keeps the result if it beats best.
+  void tryStart(const Vector3<S>& ray, Candidate<S>* best) {
+    const Candidate<S> c = refine(candidateOnRay(ray));
+    if (isBetter(c, *best)) *best = c;
+  }
+
+  /// Newton in the smoother formulation first; if that stalls, in the other, warm-started where
+  /// the first stopped and then from the original start.
+  Candidate<S> refine(Candidate<S> c) {
+    // Each start gets at most its share of the budget (exact_rules.h).
+    limit_ = std::min(q_.max_iterations, iterations_ + rules::kIterationsPerStart);
+    const Candidate<S> start = c;
+    c = primal_first_ ? newtonPrimal(c) : newtonDual(c);
+    if (c.error > q_.tolerance && iterations_ < limit_) {
+      // The other formulation, warm-started where the first stopped and, since the first may
+      // have walked somewhere useless (toward a sharp tip), also from the original start.
+      const Candidate<S> warm = primal_first_ ? newtonDual(c) : newtonPrimal(c);
+      if (isBetter(warm, c)) c = warm;
+      if (c.error > q_.tolerance && iterations_ < limit_) {
+        const Candidate<S> fresh = primal_first_ ? newtonDual(start) : newtonPrimal(start);
+        if (isBetter(fresh, c)) c = fresh;
+      }
+    }
+    return c;
+  }
+
+  /// The candidate where the ray from the centre through `ray` meets the surface, with G's
+  /// gradient and Hessian there, from one evaluation at `ray` itself: ∇G is 0-homogeneous and
+  /// ∇²G is (−1)-homogeneous, so at N = ray/G(ray) they are ∇G(ray) and G(ray)·∇²G(ray).
+  Candidate<S> candidateOnRay(const Vector3<S>& ray) const {
+    Candidate<S> c;
+    const NestedNormEval<S> e = primal_.evaluate(ray, true);
+    c.point = ray / e.value;
+    c.gradient = e.gradient;
+    c.hessian = e.value * e.hessian;
+    const S n = e.gradient.norm();
+    c.normal = n > S(0) ? Vector3<S>(e.gradient / n) : Vector3<S>::UnitZ();
+    c.error = c.point.allFinite() ? errorAt(c.point, c.normal) : std::numeric_limits<S>::infinity();
+    return c;
+  }
+
+  /// Paper Eq. 7 with d = ±‖Q − N‖.
+  S errorAt(const Vector3<S>& point, const Vector3<S>& normal) const {
+    const S d = sign_ * (y_ - point).norm();
+    const S e = (point + d * normal - y_).norm();
+    return std::isfinite(e) ? e : std::numeric_limits<S>::infinity();
+  }
+
+  bool isBetter(const Candidate<S>& a, const Candidate<S>& b) const {
+    const bool a_ok = a.error <= q_.tolerance, b_ok = b.error <= q_.tolerance;
+    if (a_ok != b_ok) return a_ok;
+    if (!a_ok) return a.error < b.error;
+    return (y_ - a.point).squaredNorm() < (y_ - b.point).squaredNorm();
+  }
+
+  /// Keeps an iterate in the first octant: a component that would turn negative shrinks
+  /// toward its coordinate plane instead (exact_rules::kOctantShrink).
+  static Vector3<S> stayInOctant(const Vector3<S>& from, const Vector3<S>& to) {
+    Vector3<S> out = to;
+    for (int i = 0; i < 3; ++i) {
+      if (!(out[i] >= S(0))) out[i] = S(rules::kOctantShrink) * from[i];
+    }
+    return out;
+  }
+
+  /// The Newton matrix restricted to the tangent plane (normal n) must be positive definite
+  /// for the step to head for a minimum of the distance. Outside it always is (the shape is
+  /// convex); inside it is not beyond a focal point (|d| > a radius of curvature), where the
+  /// iterate sits near a saddle such as the tip of a creased shape (ε > 1). There (smallest
+  /// tangent eigenvalue below 1e-4 × `scale`) the matrix is shifted by a multiple of I until
+  /// that eigenvalue is 10 % of `scale`: a damped step uphill on the Lagrangian's curvature, not
+  /// toward the saddle. Small positive eigenvalues are left alone: near a focal ring (Q close
+  /// to the axis of a round cross-section) the full Newton step is the one that converges; a
+  /// shift there made the iterate creep along the ring for hundreds of iterations.
+  static Eigen::Matrix<S, 3, 3> convexified(const Eigen::Matrix<S, 3, 3>& a, const Vector3<S>& n,
+                                            S scale) {
+    // An orthonormal tangent basis t1, t2 of n, and the 2×2 tangent block.
+    const Vector3<S> helper =
+        std::abs(n[0]) < S(rules::kTangentHelperSwitch) ? Vector3<S>::UnitX() : Vector3<S>::UnitY();
+    const Vector3<S> t1 = n.cross(helper).normalized();
+    const Vector3<S> t2 = n.cross(t1);
+    const S b11 = t1.dot(a * t1), b22 = t2.dot(a * t2), b12 = t1.dot(a * t2);
+    const S mean = (b11 + b22) / 2, half_gap = std::hypot((b11 - b22) / 2, b12);
+    const S lowest = mean - half_gap;
+    const S wanted = S(rules::kConvexifyTo) * scale;
+    if (lowest >= S(rules::kConvexifyBelow) * scale || !std::isfinite(lowest)) return a;
+    return a + (wanted - lowest) * Eigen::Matrix<S, 3, 3>::Identity();
+  }
+
+  /// Solves the bordered system [A, b; bᵀ, 0]·[δ; δλ] = [r; s]; false if singular.
+  static bool solveBordered(const Eigen::Matrix<S, 3, 3>& a, const Vector3<S>& b,
+                            const Vector3<S>& r, S s, Vector3<S>* delta) {
+    Matrix4<S> m;
+    m.template topLeftCorner<3, 3>() = a;
+    m.template topRightCorner<3, 1>() = b;
+    m.template bottomLeftCorner<1, 3>() = b.transpose();
+    m(3, 3) = S(0);
+    Vector4<S> rhs;
+    rhs << r, s;
+    const Vector4<S> x = m.partialPivLu().solve(rhs);
+    if (!x.allFinite()) return false;
+    *delta = x.template head<3>();
+    return true;
+  }
+
+  Candidate<S> newtonPrimal(Candidate<S> c) {
+    while (c.error > q_.tolerance && iterations_ < limit_) {
+      ++iterations_;
+      // ∇G and ∇²G at c.point come with the candidate (one evaluation per trial point).
+      const S mu = c.gradient.dot(y_ - c.point) / c.gradient.squaredNorm();
+      // Residual of Q − N = μ∇G; G(N) = 1 holds (N is re-projected every step).
+      const Vector3<S> residual = y_ - c.point - mu * c.gradient;
+      Vector3<S> step;
+      const Eigen::Matrix<S, 3, 3> a =
+          convexified(Eigen::Matrix<S, 3, 3>::Identity() + mu * c.hessian, c.normal, S(1));
+      if (!solveBordered(a, c.gradient, residual, S(0), &step)) break;
+      if (!tryStep(&c, step)) break;
+    }
+    return c;
+  }
+
+  Candidate<S> newtonDual(Candidate<S> c) {
+    // The dual iterate is the normal n; its surface point is ∇h(n), whose normal is n itself,
+    // so a trial costs one evaluation of h (with the Hessian, reused by the next iteration).
+    Vector3<S> n = c.normal;
+    NestedNormEval<S> e = dual_.evaluate(n, true);
+    bool moved = false;
+    while (c.error > q_.tolerance && iterations_ < limit_) {
+      ++iterations_;
+      const Vector3<S> point = e.gradient;
+      const S d = n.dot(y_ - point);
+      const Vector3<S> residual = y_ - point - d * n;
+      const Eigen::Matrix<S, 3, 3> a =
+          convexified(e.hessian + d * Eigen::Matrix<S, 3, 3>::Identity(), n, std::abs(d));
+      Vector3<S> step;
+      if (!solveBordered(a, n, residual, S(0), &step)) break;
+      bool improved = false;
+      for (int trial_step = 0; trial_step < rules::kStepTrials && !improved; ++trial_step) {
+        const Vector3<S> trial_n = stayInOctant(n, Vector3<S>(n + step)).normalized();
+        const NestedNormEval<S> trial = dual_.evaluate(trial_n, true);
+        const S error = errorAt(trial.gradient, trial_n);
+        if (error < c.error) {
+          c.point = trial.gradient;
+          c.normal = trial_n;
+          c.error = error;
+          n = trial_n;
+          e = trial;
+          improved = moved = true;
+        }
+        step *= S(0.5);
+      }
+      if (!improved) break;
+    }
+    // Back to the primal's view of the final point (its own normal, gradient and Hessian), so
+    // the error reported and any primal iterations that follow are the primal's.
+    if (!moved) return c;
+    Candidate<S> out = candidateOnRay(c.point);
+    return out.error <= c.error ? out : Candidate<S>{c.point,     c.normal, out.gradient,
+                                                     out.hessian, c.error,  0};
+  }
+
+  /// Applies a primal step (re-projected radially onto the surface) with halving; false if no
+  /// trial reduced the error.
+  bool tryStep(Candidate<S>* c, Vector3<S> step) {
+    for (int trial_step = 0; trial_step < rules::kStepTrials; ++trial_step) {
+      const Vector3<S> p = stayInOctant(c->point, Vector3<S>(c->point + step));
+      if (p.allFinite() && p.squaredNorm() > S(0)) {
+        Candidate<S> trial = candidateOnRay(p);
+        if (trial.error < c->error) {
+          *c = trial;
+          return true;
+        }
+      }
+      step *= S(0.5);
+    }
+    return false;
+  }
+
+  /// The three points reached by moving one coordinate of an inside Q outward until G = 1
+  /// (closed form through the nested norms).
+  std::array<Vector3<S>, 3> axisProjections() const {
+    const NestedNorm<S>& c = primal_;
+    const Vector3<S> u = y_.cwiseProduct(c.scale);
+    auto complement = [](S t, S p, S inv_p) {  // s with ‖(t, s)‖_p = 1, t ≤ 1
+      return std::pow(std::max(S(0), S(1) - std::pow(t, p)), inv_p);
+    };
+    std::array<Vector3<S>, 3> points;
+    const S r = pnorm2(u[0], u[1], c.p1, c.inv_p1);
+    const S r_target = complement(u[2], c.p2, c.inv_p2);  // the xy-norm the surface needs
+    for (int i = 0; i < 2; ++i) {
+      Vector3<S> v = u;
+      const S other = u[1 - i];
+      v[i] = other < r_target ? r_target * complement(other / r_target, c.p1, c.inv_p1) : u[i];
+      points[i] = v.cwiseQuotient(c.scale);
+    }
+    Vector3<S> v = u;
+    v[2] = complement(std::min(r, S(1)), c.p2, c.inv_p2);
+    points[2] = v.cwiseQuotient(c.scale);
+    return points;
+  }
+
+  /// Reflects the first-octant candidate back to Q's octant.
+  PointDistanceResult<S> finish(const Candidate<S>& c, bool inside) const {
+    PointDistanceResult<S> r = fromFirstOctant(q_.x, c.point, c.normal, inside);
+    r.error = c.error;
+    r.iterations = c.iterations;
+    r.converged = c.error <= q_.tolerance;
+    return r;
+  }
+
+  const Query<S>& q_;
+  Vector3<S> y_;
+  NestedNorm<S> primal_, dual_;
+  bool primal_first_;  // which formulation refine() tries first
+  bool inside_ = false;
+  S sign_ = S(1);
+  int iterations_ = 0;
+  int limit_ = 0;  // iteration count at which the current start stops
+};
+
+}  // namespace
+
+template <typename S>
+PointDistanceResult<S> solveExact(const Query<S>& q) {
+  return ExactSolver<S>(q).solve();
+}
+
+template PointDistanceResult<float> solveExact(const Query<float>&);
+template PointDistanceResult<double> solveExact(const Query<double>&);
+
+}  // namespace detail
+}  // namespace fcl_superellipsoid

@@ -1,0 +1,147 @@
+#include "fcl_superellipsoid/point_distance.h"
+
+#include "common/invalid_argument.h"
+#include "solvers/exact_rules.h"
+#include "solvers/solvers.h"
+
+namespace fcl_superellipsoid {
+namespace {
+
+template <typename T>
+[[noreturn]] void throwInvalid(const std::string& requirement, const T& value) {
+  detail::throwInvalidArgument("pointDistance", requirement, value);
+}
+
+template <typename S>
+void validate(const Vector3<S>& p, const DistanceOptions<S>& options) {
+  if (!p.allFinite()) throwInvalid("the query point must be finite", p);
+  validateOptions(options);
+}
+
+}  // namespace
+
+namespace detail {
+template <typename S>
+PointDistanceResult<S> solve(const Superellipsoid<S>& shape, const Vector3<S>& p_SQ,
+                             const Vector3<S>* hint, const DistanceOptions<S>& options);
+}  // namespace detail
+
+template <typename S>
+void validateOptions(const DistanceOptions<S>& options) {
+  if (!(std::isfinite(options.tolerance) && options.tolerance > S(0))) {
+    throwInvalid("options.tolerance must be finite and > 0", options.tolerance);
+  }
+  if (options.max_iterations < 1) {
+    throwInvalid("options.max_iterations must be >= 1", options.max_iterations);
+  }
+}
+
+template void validateOptions(const DistanceOptions<float>&);
+template void validateOptions(const DistanceOptions<double>&);
+
+const char* toString(DistanceMethod method) {
+  switch (method) {
+    case DistanceMethod::kRadial:
+      return "Radial";
+    case DistanceMethod::kPaper:
+      return "Paper";
+    case DistanceMethod::kExact:
+      return "Exact";
+  }
+  return "unknown";
+}
+
+template <typename S>
+PointDistanceResult<S> pointDistance(const Superellipsoid<S>& shape,
+                                     const detail::NonDeduced<Vector3<S>>& p_SQ,
+                                     const detail::NonDeduced<DistanceOptions<S>>& options) {
+  validate(p_SQ, options);
+  return detail::solve<S>(shape, p_SQ, nullptr, options);
+}
+
+namespace detail {
+
+template <typename S>
+PointDistanceResult<S> solve(const Superellipsoid<S>& shape, const Vector3<S>& p_SQ,
+                             const Vector3<S>* hint, const DistanceOptions<S>& options) {
+  // Below a few ulps of the query's magnitude no method can resolve the error estimate: the
+  // tolerance has a rounding floor (exact_rules.h), for every method.
+  const detail::Query<S> q{
+      shape, p_SQ, exact_rules::absoluteTolerance(options.tolerance, shape.size(), p_SQ.norm()),
+      options.max_iterations, hint};
+  // At the exact centre the radial direction is undefined, so every method answers with the
+  // Exact solver's centre search (documented in point_distance.h).
+  if (p_SQ.isZero(S(0))) return detail::solveExact(q);
+  switch (options.method) {
+    case DistanceMethod::kRadial:
+      return detail::solveRadial(q);
+    case DistanceMethod::kPaper:
+      return detail::solvePaper(q);
+    case DistanceMethod::kExact:
+      return detail::solveExact(q);
+  }
+  throwInvalid("options.method is not a DistanceMethod", static_cast<int>(options.method));
+}
+
+template <typename S>
+PointDistanceResult<S> pointDistanceWithHint(const Superellipsoid<S>& shape, const Vector3<S>& p_SQ,
+                                             const Vector3<S>& hint_S,
+                                             const DistanceOptions<S>& options) {
+  validate(p_SQ, options);
+  return solve(shape, p_SQ, hint_S.allFinite() ? &hint_S : nullptr, options);
+}
+
+template PointDistanceResult<float> pointDistanceWithHint(const Superellipsoid<float>&,
+                                                          const Vector3<float>&,
+                                                          const Vector3<float>&,
+                                                          const DistanceOptions<float>&);
+template PointDistanceResult<double> pointDistanceWithHint(const Superellipsoid<double>&,
+                                                           const Vector3<double>&,
+                                                           const Vector3<double>&,
+                                                           const DistanceOptions<double>&);
+
+}  // namespace detail
+
+template <typename S>
+PointDistanceResult<S> pointDistance(const Superellipsoid<S>& shape,
+                                     const detail::NonDeduced<fcl::Transform3<S>>& X_WS,
+                                     const detail::NonDeduced<Vector3<S>>& p_WQ,
+                                     const detail::NonDeduced<DistanceOptions<S>>& options) {
+  validate(p_WQ, options);
+  const Vector3<S> p_SQ = X_WS.inverse(Eigen::Isometry) * p_WQ;
+  PointDistanceResult<S> r = pointDistance<S>(shape, p_SQ, options);
+  r.nearest_point = X_WS * r.nearest_point;
+  r.normal = X_WS.linear() * r.normal;
+  return r;
+}
+
+namespace detail {
+
+template <typename S>
+PointDistanceResult<S> solveRadial(const Query<S>& q) {
+  // Paper Eq. 3: the surface point on the ray from the centre through Q.
+  const S g = q.shape.gauge(q.x);
+  return resultAt(q, q.shape.radialProjection(q.x), g < S(1), 0);
+}
+
+template PointDistanceResult<float> solveRadial(const Query<float>&);
+template PointDistanceResult<double> solveRadial(const Query<double>&);
+
+}  // namespace detail
+
+template PointDistanceResult<float> pointDistance(const Superellipsoid<float>&,
+                                                  const Vector3<float>&,
+                                                  const DistanceOptions<float>&);
+template PointDistanceResult<double> pointDistance(const Superellipsoid<double>&,
+                                                   const Vector3<double>&,
+                                                   const DistanceOptions<double>&);
+template PointDistanceResult<float> pointDistance(const Superellipsoid<float>&,
+                                                  const fcl::Transform3<float>&,
+                                                  const Vector3<float>&,
+                                                  const DistanceOptions<float>&);
+template PointDistanceResult<double> pointDistance(const Superellipsoid<double>&,
+                                                   const fcl::Transform3<double>&,
+                                                   const Vector3<double>&,
+                                                   const DistanceOptions<double>&);
+
+}  // namespace fcl_superellipsoid
