@@ -22,7 +22,9 @@
 
 #include <fcl/geometry/shape/shape_base.h>
 
+#include <atomic>
 #include <iosfwd>
+#include <limits>
 #include <vector>
 
 #include "fcl_superellipsoid/distance_options.h"
@@ -32,6 +34,33 @@ namespace fcl_superellipsoid {
 
 template <typename S>
 using Vector3 = fcl::Vector3<S>;
+
+namespace detail {
+/// A value computed on first use and then kept (copies keep it too). Thread-safe: threads that
+/// race on the first use compute the same value and store it.
+template <typename S>
+class CachedValue {
+ public:
+  CachedValue() = default;
+  CachedValue(const CachedValue& other) : value_(other.value_.load(std::memory_order_relaxed)) {}
+  CachedValue& operator=(const CachedValue& other) {
+    value_.store(other.value_.load(std::memory_order_relaxed), std::memory_order_relaxed);
+    return *this;
+  }
+  template <typename Compute>
+  S get(const Compute& compute) const {
+    S v = value_.load(std::memory_order_relaxed);
+    if (v != v) {  // NaN: not computed yet
+      v = compute();
+      value_.store(v, std::memory_order_relaxed);
+    }
+    return v;
+  }
+
+ private:
+  mutable std::atomic<S> value_{std::numeric_limits<S>::quiet_NaN()};
+};
+}  // namespace detail
 
 /// A superellipsoid centred at the origin of its frame, axis-aligned in that frame.
 ///
@@ -87,6 +116,13 @@ class FSE_EXPORT Superellipsoid : public fcl::ShapeBase<S> {
   /// @throws std::invalid_argument if a component of direction is NaN or infinite.
   Vector3<S> supportPoint(const Vector3<S>& direction) const;
 
+  /// A lower bound on the smallest principal radius of curvature of the surface (within 10 % of
+  /// it): every ball of this radius that touches the surface from inside lies inside the shape
+  /// (it "rolls freely"; docs/math.md → "The rolling-ball certificate"). 0 where an exponent is
+  /// > 1: the surface then has creases of unbounded curvature. Computed on the first call (about
+  /// a millisecond; the Exact solver calls it for the first inside query), then kept.
+  S minRadiusOfCurvature() const;
+
   /// The options FCL queries against this shape use (fcl_integration.h: mesh vertices,
   /// spheres). Default: the Exact method with its default tolerance.
   const DistanceOptions<S>& queryOptions() const { return query_options_; }
@@ -112,6 +148,7 @@ class FSE_EXPORT Superellipsoid : public fcl::ShapeBase<S> {
   S eps1_;
   S eps2_;
   DistanceOptions<S> query_options_;
+  detail::CachedValue<S> min_radius_of_curvature_;
 };
 
 template <typename S>

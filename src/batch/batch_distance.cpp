@@ -117,7 +117,8 @@ class VertexSolver {
                  detail::primalIsSmoother(shape),
                  options.distance.tolerance * shape.size(),
                  shape.size(),
-                 options.distance.max_iterations} {
+                 options.distance.max_iterations,
+                 shape.minRadiusOfCurvature()} {
     validateOptions(options.distance);
     checkVertices<S>(function, p_WV);
     if (options.warm_start_W != nullptr && options.warm_start_W->cols() != p_WV.cols()) {

@@ -252,6 +252,8 @@ class LaneSolver {
         iterations_(hn::Zero(d)) {}
 
   V iterations() const { return iterations_; }
+  /// The absolute tolerance per lane (exact_rules::absoluteTolerance).
+  V tolerance() const { return tolerance_; }
 
   /// ExactSolver::candidateOnRay; `gauge` gets G(ray).
   Candidate<D> candidateOnRay(const Vec3<D>& ray, V* gauge = nullptr) const {
@@ -543,6 +545,15 @@ void SolveInsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
 
   M all_converged;
   Candidate<D> best = solver.refine(radial, work, &all_converged);
+  // Lanes whose answer is already certified global need no further start
+  // (exact_rules::certifiedGlobal, lane-wise: d + tolerance ≤ the rolling radius).
+  const auto certified = [&](const Candidate<D>& c, M converged) {
+    const Vec3<D> to_c = Minus(y, c.point);
+    const V reach = hn::Add(hn::Sqrt(Dot(to_c, to_c)), solver.tolerance());
+    return hn::And(converged, hn::Le(reach, hn::Set(d, problem.rolling_radius)));
+  };
+  M done = certified(best, all_converged);
+  M more = hn::AndNot(done, work);
   // The three axis projections (ExactSolver::axisProjections): move one coordinate of Q
   // outward until G = 1, in the primal's scaled coordinates u = y/a.
   const NestedNorm<T>& g = problem.primal;
@@ -565,12 +576,16 @@ void SolveInsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
                              {y.x, hn::Div(move(u0, u1), s1), y.z},
                              {y.x, y.y, hn::Div(complement(hn::Min(r, one), p2, inv_p2), s2)}};
   for (const Vec3<D>& start : starts) {
+    if (hn::AllFalse(d, more)) break;
     M converged;
-    const Candidate<D> c = solver.refine(solver.candidateOnRay(start), work, &converged);
-    all_converged = hn::And(all_converged, converged);
+    const Candidate<D> c = solver.refine(solver.candidateOnRay(start), more, &converged);
+    all_converged = hn::And(all_converged, hn::Or(converged, done));
     // ExactSolver::isBetter between converged candidates: strictly nearer wins.
     const Vec3<D> to_c = Minus(y, c.point), to_best = Minus(y, best.point);
     best = Select(hn::And(converged, hn::Lt(Dot(to_c, to_c), Dot(to_best, to_best))), c, best);
+    const M now_done = certified(best, hn::And(more, all_converged));
+    done = hn::Or(done, now_done);
+    more = hn::AndNot(now_done, more);
   }
 
   // Deep in an elongated shape the scalar solver adds the cross-sections' diagonal starts:
@@ -580,7 +595,7 @@ void SolveInsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
   const T a0 = problem.radii[0], a1 = problem.radii[1], a2 = problem.radii[2];
   // (of every cross-section's radii: the smallest radius is a lower bound on all of them)
   const T quarter_min = T(rules::kDiagonalStartDepth) * std::min({a0, a1, a2});
-  const M deep = hn::Gt(best_distance, hn::Set(d, quarter_min));
+  const M deep = hn::AndNot(done, hn::Gt(best_distance, hn::Set(d, quarter_min)));
   const M over_budget = hn::Gt(solver.iterations(), hn::Set(d, T(problem.max_iterations)));
   const M solved = hn::AndNot(hn::Or(deep, over_budget), hn::And(work, all_converged));
   StoreAnswer(d, best, solved, hn::MaskFromVec(zero), lanes, i);

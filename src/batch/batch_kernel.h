@@ -13,7 +13,8 @@
 //    problem is convex, so a start that converges gives the scalar solver's answer to the
 //    tolerance. Lanes found inside are marked kLaneInside.
 //  - inside pass: Newton from the radial projection and the three axis projections (the
-//    scalar solver's first four starts); the nearest converged answer wins.
+//    scalar solver's first four starts), the latter only on lanes whose answer is not yet
+//    certified global (exact_rules::certifiedGlobal); the nearest converged answer wins.
 // A lane goes back to the scalar solver (kLaneScalar) whenever the scalar solver would do
 // more than that: a start that converges in neither formulation (the scalar solver then tries
 // further starts and, outside, the bracketed projection), an inside query near a coordinate plane
@@ -46,6 +47,7 @@ struct LaneProblem {
   S tolerance;  // options.tolerance × size, length units (the rounding floor is added per lane)
   S size;       // the largest radius
   int max_iterations;  // the caller's cap on all starts together
+  S rolling_radius;    // Superellipsoid::minRadiusOfCurvature(): the inside certificate's radius
 };
 
 enum LaneStatus : std::int32_t {

@@ -6,6 +6,7 @@
 
 #include "common/invalid_argument.h"
 #include "fcl_glue/registration.h"
+#include "shape/curvature.h"
 #include "shape/nested_norm.h"
 #include "shape/octant.h"
 
@@ -46,6 +47,14 @@ Superellipsoid<S>::Superellipsoid(const Vector3<S>& radii, S eps1, S eps2)
   // The one call from the shape up into the FCL layer (fcl_glue/registration.h): FCL's
   // function tables learn the shape before its first query.
   detail::registerWithFclOnce();
+}
+
+template <typename S>
+S Superellipsoid<S>::minRadiusOfCurvature() const {
+  return min_radius_of_curvature_.get([this] {
+    return static_cast<S>(
+        detail::minRadiusOfCurvature(radii_.template cast<double>(), eps1_, eps2_));
+  });
 }
 
 template <typename S>

@@ -63,6 +63,16 @@ S nearPlaneFraction() {
   return std::sqrt(std::numeric_limits<S>::epsilon());
 }
 
+/// The rolling-ball certificate (docs/math.md → "The rolling-ball certificate"). A converged
+/// inside answer N at distance d from Q is the global nearest point if the ball of radius d
+/// around Q lies inside the shape, which holds when d is at most the radius of the ball that
+/// rolls freely inside it (Superellipsoid::minRadiusOfCurvature(), 0 where it has creases). The
+/// answer is exact to the tolerance, so the test leaves that much room.
+template <typename S>
+bool certifiedGlobal(S distance, S tolerance, S rolling_radius) {
+  return distance + tolerance <= rolling_radius;
+}
+
 }  // namespace exact_rules
 }  // namespace detail
 }  // namespace fcl_superellipsoid

@@ -111,48 +111,64 @@ class ExactSolver {
         }
       }
     }
-    if (inside_) {
-      for (const Vector3<S>& start : axisProjections()) tryStart(start, &best);
-      // Deep in an elongated shape the nearest point can lie off the axis directions of the
-      // cross-section through Q (a diamond-like cross-section, ε > 1, is nearest on its
-      // diagonal faces). When the answer so far is farther than a quarter of a cross-section's
-      // smaller radius, start once more along that cross-section's diagonal.
-      const Vector3<S>& a = q_.shape.radii();
-      const S best_distance = (y_ - best.point).norm();
-      for (int i = 0; i < 3; ++i) {
-        const int j = (i + 1) % 3, k = (i + 2) % 3;
-        if (best_distance > S(rules::kDiagonalStartDepth) * std::min(a[j], a[k])) {
-          Vector3<S> start = y_;
-          start[j] += S(0.5) * a[j];
-          start[k] += S(0.5) * a[k];
-          tryStart(start, &best);
-        }
-      }
-      // On a coordinate plane every start above lies on it too, and the plane is a mirror
-      // symmetry: Newton never leaves it, though for ε > 1 the nearest points can be off it
-      // (the plane is a saddle there). Start once more from a point tilted off each such plane.
-      // (One start per such plane, and one off all of them at once for a point on an axis.)
-      Vector3<S> all_tilted = y_;
-      int planes = 0;
-      for (int i = 0; i < 3; ++i) {
-        if (y_[i] > rules::nearPlaneFraction<S>() * q_.shape.radii()[i]) continue;
-        Vector3<S> tilted = y_;
-        tilted[i] += S(0.5) * q_.shape.radii()[i];
-        all_tilted[i] = tilted[i];
-        ++planes;
-        tryStart(tilted, &best);
-      }
-      if (planes > 1) tryStart(all_tilted, &best);
-    }
-    if (g_y < S(rules::kDeepGauge)) {  // deep inside: the centre's candidates may be nearer still
-      const Candidate<S> other = solveAtCentre();
-      if (isBetter(other, best)) best = other;
-    }
+    if (inside_) searchInside(g_y, &best);
     best.iterations = iterations_;  // all starts share one budget
     return finish(best, inside_);
   }
 
  private:
+  /// Inside, the problem is not convex: starts beyond the radial one, until the best answer so far
+  /// is certified to be the global nearest point (exact_rules::certifiedGlobal: the ball around
+  /// Q through it lies inside the shape, so nothing on the surface is nearer).
+  void searchInside(S g_y, Candidate<S>* best) {
+    const S rolling_radius = q_.shape.minRadiusOfCurvature();
+    auto certified = [&] {
+      return best->error <= q_.tolerance &&
+             rules::certifiedGlobal((y_ - best->point).norm(), q_.tolerance, rolling_radius);
+    };
+    if (certified()) return;
+    for (const Vector3<S>& start : axisProjections()) {
+      tryStart(start, best);
+      if (certified()) return;
+    }
+    // Deep in an elongated shape the nearest point can lie off the axis directions of the
+    // cross-section through Q (a diamond-like cross-section, ε > 1, is nearest on its
+    // diagonal faces). When the answer so far is farther than a quarter of a cross-section's
+    // smaller radius, start once more along that cross-section's diagonal.
+    const Vector3<S>& a = q_.shape.radii();
+    const S best_distance = (y_ - best->point).norm();
+    for (int i = 0; i < 3; ++i) {
+      const int j = (i + 1) % 3, k = (i + 2) % 3;
+      if (best_distance > S(rules::kDiagonalStartDepth) * std::min(a[j], a[k])) {
+        Vector3<S> start = y_;
+        start[j] += S(0.5) * a[j];
+        start[k] += S(0.5) * a[k];
+        tryStart(start, best);
+        if (certified()) return;
+      }
+    }
+    // On a coordinate plane every start above lies on it too, and the plane is a mirror
+    // symmetry: Newton never leaves it, though for ε > 1 the nearest points can be off it
+    // (the plane is a saddle there). Start once more from a point tilted off each such plane.
+    // (One start per such plane, and one off all of them at once for a point on an axis.)
+    Vector3<S> all_tilted = y_;
+    int planes = 0;
+    for (int i = 0; i < 3; ++i) {
+      if (y_[i] > rules::nearPlaneFraction<S>() * q_.shape.radii()[i]) continue;
+      Vector3<S> tilted = y_;
+      tilted[i] += S(0.5) * q_.shape.radii()[i];
+      all_tilted[i] = tilted[i];
+      ++planes;
+      tryStart(tilted, best);
+    }
+    if (planes > 1) tryStart(all_tilted, best);
+    if (certified()) return;
+    if (g_y < S(rules::kDeepGauge)) {  // deep inside: the centre's candidates may be nearer
+      const Candidate<S> other = solveAtCentre();
+      if (isBetter(other, *best)) *best = other;
+    }
+  }
+
   /// The exact centre: every direction is radial, and the nearest point depends on ε (the end
   /// of the shortest semi-axis for a box-like shape, a face centre for an octahedron-like one).
   /// The axis tips are stationary points, so they are candidates as they are; Newton runs

@@ -69,7 +69,8 @@ string(STRIP "${run_output}" flags)
 expect("${flags}" "${root}" "pkg-config flags (must point into the unpacked tree)")
 separate_arguments(flags UNIX_COMMAND "${flags}")
 separate_arguments(consumer_flags UNIX_COMMAND "${CONSUMER_FLAGS}")
-run(c++ -std=c++17 -O1 ${consumer_flags} ${SOURCE_DIR}/test/consumer/scene.cpp ${flags}
+# FCL's own pkg-config file adds -std=c++11: the standard goes after the flags (docs/usage.md).
+run(c++ -O1 ${consumer_flags} ${SOURCE_DIR}/test/consumer/scene.cpp ${flags} -std=c++17
     -o ${WORK_DIR}/scene-pkg-config)
 run(${WORK_DIR}/scene-pkg-config)
 message(STATUS "pkg-config consumer: ${run_output}")

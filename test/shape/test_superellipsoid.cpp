@@ -270,6 +270,69 @@ TYPED_TEST(SuperellipsoidTest, SupportPointOfZeroAndNonFiniteDirections) {
                std::invalid_argument);
 }
 
+// The rolling radius (minRadiusOfCurvature) against closed forms: a sphere's radius, an
+// ellipsoid's a_min²/a_max (at the tip of its longest axis); 0 where an exponent is > 1. The
+// bound may be up to 10 % low by design (curvature.cpp), never high.
+TYPED_TEST(SuperellipsoidTest, RollingRadiusMatchesClosedForms) {
+  using S = TypeParam;
+  const double tol = std::is_same<S, float>::value ? 1e-6 : 1e-9;
+  const std::vector<std::array<double, 3>> ellipsoids = {
+      {1, 1, 1}, {2.5, 2.5, 2.5}, {3, 2, 1}, {1, 1, 1e-3}, {1000, 1, 1}, {0.2, 7, 3}};
+  for (const auto& a : ellipsoids) {
+    const Superellipsoid<S> shape{S(a[0]), S(a[1]), S(a[2]), S(1), S(1)};
+    const double lo = *std::min_element(a.begin(), a.end());
+    const double hi = *std::max_element(a.begin(), a.end());
+    const double exact = lo * lo / hi;
+    const double r = shape.minRadiusOfCurvature();
+    EXPECT_LE(r, exact * (1 + tol)) << test::describe(shape);
+    EXPECT_GE(r, 0.9 * exact * (1 - tol)) << test::describe(shape);
+  }
+  for (const auto& e : std::vector<std::array<double, 2>>{{1.01, 0.5}, {0.5, 1.5}, {1.9, 1.9}}) {
+    EXPECT_EQ(Superellipsoid<S>(S(1), S(2), S(3), S(e[0]), S(e[1])).minRadiusOfCurvature(), S(0));
+  }
+}
+
+// The rolling-ball property by construction, against the independent long-double gauge: the
+// ball of the rolling radius that touches the surface from inside lies inside the shape, over
+// the exponent grid (ε ≤ 1) and the radii set, at random surface points.
+TYPED_TEST(SuperellipsoidTest, TheRollingBallLiesInside) {
+  using S = TypeParam;
+  test::AngleSampler angles(31);
+  std::mt19937 rng(32);
+  std::normal_distribution<double> gauss;
+  for (const auto& a : test::radiiSet()) {
+    for (double e1 : test::exponentGrid()) {
+      for (double e2 : test::exponentGrid()) {
+        if (e1 > 1 || e2 > 1) continue;
+        const Superellipsoid<S> shape{S(a[0]), S(a[1]), S(a[2]), S(e1), S(e2)};
+        SCOPED_TRACE(test::describe(shape));
+        const double r = shape.minRadiusOfCurvature();
+        // A lower bound; 0 (the certificate off) is allowed at the extreme exponents, where the
+        // search's samples underflow, never from 0.1 up.
+        if (std::min(e1, e2) >= 0.1) EXPECT_GT(r, 0.0);
+        if (r == 0) continue;
+        for (int k = 0; k < 6; ++k) {
+          const auto [eta, omega] = angles();
+          const Vector3<double> p =
+              Superellipsoid<double>(a[0], a[1], a[2], e1, e2).surfacePoint(eta, omega);
+          const Vector3<double> n = Superellipsoid<double>(a[0], a[1], a[2], e1, e2).normal(p);
+          const Vector3<double> centre = p - r * n;
+          for (int m = 0; m < 64; ++m) {
+            const Vector3<double> v =
+                Vector3<double>(gauss(rng), gauss(rng), gauss(rng)).normalized();
+            const Vector3<double> x = centre + r * v;
+            const long double g =
+                test::referenceGauge({a[0], a[1], a[2]}, e1, e2, {x[0], x[1], x[2]});
+            // On the surface at the touching point: G = 1 up to the rounding of x (ulps of |x|
+            // relative to the smallest radius, which scales the gauge).
+            EXPECT_LE(double(g), 1 + 1e-9) << "ball point outside, k = " << k;
+          }
+        }
+      }
+    }
+  }
+}
+
 TYPED_TEST(SuperellipsoidTest, InvalidParametersThrowNamingTheValue) {
   using S = TypeParam;
   const S nan = std::numeric_limits<S>::quiet_NaN();

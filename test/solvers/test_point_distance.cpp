@@ -131,6 +131,53 @@ TYPED_TEST(PointDistanceTest, ExactMatchesReferenceInside) {
   }
 }
 
+// The rolling-ball certificate (exact_rules::certifiedGlobal) ends the inside search after the
+// first start whose answer is within the shape's rolling radius. It must never accept a local
+// minimum that is not the global one. Points where minima compete, on shapes where it is active
+// (both exponents ≤ 1): just inside the certificate's depth limit below random surface points,
+// on the diagonals of box-like corners, on face bisectors and mirror planes, and in the flat
+// middle of elongated shapes; every answer against the independent long-double reference.
+TYPED_TEST(PointDistanceTest, CertifiedInsideAnswersAreTheGlobalMinimum) {
+  using S = TypeParam;
+  test::AngleSampler angles(21);
+  const auto options = DistanceOptions<S>::of(DistanceMethod::kExact);
+  const std::vector<std::array<double, 5>> shapes = {
+      {1, 1, 1, 0.1, 0.1}, {1, 1.5, 0.7, 0.1, 0.1},   {1, 1, 1, 0.3, 0.3},
+      {1, 1, 1, 1, 0.3},   {3.5, 3.0, 2.0, 0.4, 0.3}, {3, 2, 1, 1, 1},
+      {2, 1, 1, 0.65, 1},  {1, 1, 1, 0.65, 0.65}};
+  for (const auto& c : shapes) {
+    const Superellipsoid<S> shape = makeShape<S>({c[0], c[1], c[2]}, c[3], c[4]);
+    SCOPED_TRACE(test::describe(shape));
+    const test::ReferenceDistance reference({c[0], c[1], c[2]}, c[3], c[4]);
+    const double size = shape.size(), target = test::exactTarget<S>(c[3], c[4]);
+    const double rolling = shape.minRadiusOfCurvature();
+    ASSERT_GT(rolling, 0.0);
+    const Vector3<S> a = shape.radii();
+    std::vector<Vector3<S>> points;
+    for (int k = 0; k < 8; ++k) {  // below random surface points, at the certificate's limit
+      const auto [eta, omega] = angles();
+      const Vector3<S> p = shape.surfacePoint(S(eta), S(omega));
+      const double depth = std::vector<double>{0.5, 0.9, 0.99, 1.1}[k % 4] * rolling;
+      points.push_back(p - S(depth) * shape.normal(p));
+    }
+    for (double t : {0.5, 0.7, 0.8, 0.9}) {
+      points.push_back(S(t) * a);                                    // corner diagonal
+      points.push_back(Vector3<S>(S(t) * a[0], S(t) * a[1], S(0)));  // edge diagonal, z plane
+      points.push_back(Vector3<S>(S(t) * a[0], S(0), S(0)));         // an axis
+      points.push_back(Vector3<S>(S(t) * a[0], S(0.3) * a[1], S(0.5 * t) * a[2]));  // off-plane
+    }
+    for (const Vector3<S>& x : points) {
+      if (!shape.contains(x)) continue;
+      SCOPED_TRACE("at (" + std::to_string(x[0]) + ", " + std::to_string(x[1]) + ", " +
+                   std::to_string(x[2]) + ")");
+      const auto r = pointDistance(shape, x, options);
+      expectInvariants(shape, x, r, options.max_iterations, target);
+      const auto truth = reference.query({x[0], x[1], x[2]});
+      EXPECT_NEAR(double(r.distance), double(truth.distance), target * size);
+    }
+  }
+}
+
 // Deep points near the long axis of a cigar: the nearest point can lie on a diagonal face of the
 // cross-section through Q, or Q can sit near the focal ring of a round cross-section. Each
 // case once missed the global minimum; the answer must be no deeper than the reference's (it
