@@ -11,6 +11,7 @@
 #include <limits>
 #include <unordered_set>
 
+#include "fcl_superellipsoid/batch_distance.h"
 #include "fcl_superellipsoid/diagnostics.h"
 #include "fcl_superellipsoid/point_distance.h"
 #include "shape/nested_norm.h"
@@ -62,6 +63,9 @@ SweptBox<S> sweptBox(const fcl::KDOP<S, N>& bv) {
   return {S(0.5) * (lo + hi), fcl::Matrix3<S>::Identity(), S(0.5) * (hi - lo), S(0)};
 }
 
+/// Subtrees with at most this many primitives are descended without bounding their BVs.
+constexpr int kUnboundedPrimitives = 16;
+
 template <typename BV>
 class VertexTraversal {
  public:
@@ -75,6 +79,7 @@ class VertexTraversal {
         X_WS_(X_WS),
         X_SM_(X_WS.inverse(Eigen::Isometry) * X_WM),
         support_(NestedNorm<S>::support(shape)),
+        gauge_(NestedNorm<S>::gauge(shape)),
         options_(shape.queryOptions()),
         stats_(vertexTraversalStats()) {
     const fcl::Transform3<S> X_MS = X_SM_.inverse(Eigen::Isometry);
@@ -82,30 +87,53 @@ class VertexTraversal {
     R_MS_ = X_MS.linear();
   }
 
+  /// The vertex of least signed distance. The traversal keeps the least cheap upper bound seen
+  /// so far and prunes every BV and vertex whose lower bound cannot beat it; the survivors are
+  /// solved together by the batched queries, and the least answer wins (ties: lower index).
   VertexHit<S> nearest(bool stop_at_penetration) {
     stop_at_penetration_ = stop_at_penetration;
     if (model_.getNumBVs() > 0) descendForDistance(0);
-    return best_;
+    if (penetrator_ >= 0) return solveOne(penetrator_);
+    std::vector<int> survivors;
+    for (const Candidate& c : candidates_) {
+      if (c.lower <= best_upper_) survivors.push_back(c.vertex);
+    }
+    std::vector<VertexHit<S>> hits = solveAll(survivors);
+    VertexHit<S> best;
+    for (const VertexHit<S>& h : hits) {
+      if (best.vertex < 0 || h.distance < best.distance ||
+          (h.distance == best.distance && h.vertex < best.vertex)) {
+        best = h;
+      }
+    }
+    return best;
   }
 
+  /// The penetrating vertices, the deepest max_count first. With depths, every vertex strictly
+  /// inside is found by the traversal and then solved together by the batched queries.
   std::vector<VertexHit<S>> penetrating(std::size_t max_count, bool with_depth) {
     max_count_ = max_count;
     with_depth_ = with_depth;
     if (model_.getNumBVs() > 0 && max_count > 0) descendForCollision(0);
-    if (with_depth_) {
-      const auto deeper = [](const VertexHit<S>& a, const VertexHit<S>& b) {
-        return a.distance < b.distance || (a.distance == b.distance && a.vertex < b.vertex);
-      };
-      const std::size_t keep = std::min(max_count_, hits_.size());
-      std::partial_sort(hits_.begin(), hits_.begin() + keep, hits_.end(), deeper);
-      hits_.resize(keep);
+    if (!with_depth_) return hits_;
+    std::vector<VertexHit<S>> hits;
+    for (const VertexHit<S>& h : solveAll(inside_)) {
+      if (h.distance < S(0)) hits.push_back(h);
     }
-    return hits_;
+    const auto deeper = [](const VertexHit<S>& a, const VertexHit<S>& b) {
+      return a.distance < b.distance || (a.distance == b.distance && a.vertex < b.vertex);
+    };
+    const std::size_t keep = std::min(max_count_, hits.size());
+    std::partial_sort(hits.begin(), hits.begin() + keep, hits.end(), deeper);
+    hits.resize(keep);
+    return hits;
   }
 
  private:
-  /// Lower bound on the signed distance of any vertex inside bv (comment in the header).
-  S lowerBound(const BV& bv) {
+  /// Lower bound on the signed distance of any vertex inside bv (comment in the header). It may
+  /// stop as soon as the bound exceeds `cutoff` (the caller prunes the BV then): the shape's
+  /// own axes first, which need no support-function evaluation.
+  S lowerBound(const BV& bv, S cutoff) {
     ++stats_.bv_tests;
     const SweptBox<S> box = sweptBox(bv);
     const Vector3<S> d = centre_M_ - box.centre;
@@ -120,10 +148,14 @@ class VertexTraversal {
     };
     S best = -std::numeric_limits<S>::infinity();
     for (int i = 0; i < 3; ++i) {
-      const Vector3<S> u = box.axes.col(i);
-      best = std::max(best, gap(u, shapeHalfWidth(u), box.half_extents[i]));
       const Vector3<S> v = R_MS_.col(i);
       best = std::max(best, gap(v, shape_.radii()[i], boxHalfWidth(v)));
+    }
+    if (best > cutoff) return best;
+    for (int i = 0; i < 3; ++i) {
+      const Vector3<S> u = box.axes.col(i);
+      best = std::max(best, gap(u, shapeHalfWidth(u), box.half_extents[i]));
+      if (best > cutoff) return best;
     }
     const S n = d.norm();
     if (n > S(0)) {
@@ -131,6 +163,15 @@ class VertexTraversal {
       best = std::max(best, gap(u, shapeHalfWidth(u), boxHalfWidth(u)));
     }
     return best > S(0) ? best : -shape_.radii().minCoeff();
+  }
+
+  /// lowerBound of a node's BV; −infinity, without a test, for a node with at most
+  /// kUnboundedPrimitives primitives: bounding its few vertices one by one (one gauge
+  /// evaluation each) costs less than bounding its BVs (support-function evaluations).
+  S boundOf(int node, S cutoff) {
+    const fcl::BVNode<BV>& n = model_.getBV(node);
+    if (n.num_primitives <= kUnboundedPrimitives) return -std::numeric_limits<S>::infinity();
+    return lowerBound(n.bv, cutoff);
   }
 
   /// Calls f(vertex index) for the vertices of a leaf's primitive.
@@ -150,30 +191,69 @@ class VertexTraversal {
 
   Vector3<S> inShapeFrame(int v) const { return X_SM_ * model_.vertices[v]; }
 
-  VertexHit<S> solve(int v, const Vector3<S>& p_S) {
-    ++stats_.vertices_solved;
-    const PointDistanceResult<S> r = pointDistance(shape_, p_S, options_);
+  /// The hit of vertex v from a point-distance answer in the shape's frame.
+  VertexHit<S> hitOf(int v, const Vector3<S>& nearest_S, const Vector3<S>& normal_S,
+                     S distance) const {
     VertexHit<S> hit;
     hit.vertex = v;
-    hit.distance = r.distance;
+    hit.distance = distance;
     hit.point_W = X_WM_ * model_.vertices[v];
-    hit.nearest_W = X_WS_ * r.nearest_point;
-    hit.normal_W = X_WS_.linear() * r.normal;
+    hit.nearest_W = X_WS_ * nearest_S;
+    hit.normal_W = X_WS_.linear() * normal_S;
     return hit;
   }
 
-  bool done() const { return stop_at_penetration_ && best_.vertex >= 0 && best_.distance < 0; }
+  VertexHit<S> solveOne(int v) {
+    ++stats_.vertices_solved;
+    const PointDistanceResult<S> r = pointDistance(shape_, inShapeFrame(v), options_);
+    return hitOf(v, r.nearest_point, r.normal, r.distance);
+  }
 
+  /// The vertices, solved together by the batched queries (the SIMD kernel for the Exact
+  /// method, threads for many vertices), with the shape's query options, in the shape's frame.
+  std::vector<VertexHit<S>> solveAll(const std::vector<int>& vertices) {
+    stats_.vertices_solved += vertices.size();
+    Matrix3X<S> p_S(3, Eigen::Index(vertices.size()));
+    for (std::size_t k = 0; k < vertices.size(); ++k) p_S.col(k) = inShapeFrame(vertices[k]);
+    BatchOptions<S> options;
+    options.distance = options_;
+    BatchDistanceResult<S> r;
+    batchDistance(shape_, fcl::Transform3<S>::Identity(), p_S, r, options);
+    std::vector<VertexHit<S>> hits;
+    hits.reserve(vertices.size());
+    for (std::size_t k = 0; k < vertices.size(); ++k) {
+      hits.push_back(hitOf(vertices[k], r.nearest_point.col(k), r.normal.col(k), r.distance[k]));
+    }
+    return hits;
+  }
+
+  bool done() const { return stop_at_penetration_ && penetrator_ >= 0; }
+
+  /// Bounds of a vertex's signed distance from one evaluation of the gauge G, with
+  /// a = the smallest radius and G(v) ≤ √3·‖v‖/a (each nested p-norm, p ≥ 1, is at most the
+  /// 1-norm): G's triangle inequality gives depth ≥ a·(1 − G)/√3 inside and distance ≥
+  /// a·(G − 1)/√3 outside; the radial projection is a surface point, so its distance bounds
+  /// the depth and the distance from above; outside, the box bounds the distance from below.
   void testForDistance(int v) {
     ++stats_.vertices_bounded;
     const Vector3<S> p_S = inShapeFrame(v);
-    // The distance to the shape's box bounds the distance to the shape from below; inside
-    // the box, no point is deeper than the smallest radius.
-    const S box_distance = (p_S.cwiseAbs() - shape_.radii()).cwiseMax(S(0)).norm();
-    const S bound = box_distance > S(0) ? box_distance : -shape_.radii().minCoeff();
-    if (best_.vertex >= 0 && bound >= best_.distance) return;
-    const VertexHit<S> hit = solve(v, p_S);
-    if (best_.vertex < 0 || hit.distance < best_.distance) best_ = hit;
+    const S g = gauge_.value(p_S.cwiseAbs());
+    const S a = shape_.radii().minCoeff() / std::sqrt(S(3));
+    S lower, upper;
+    if (g < S(1)) {
+      if (stop_at_penetration_) {
+        penetrator_ = v;
+        return;
+      }
+      lower = g > S(0) ? -p_S.norm() * (S(1) / g - S(1)) : -shape_.radii().minCoeff();
+      upper = -a * (S(1) - g);
+    } else {
+      const S box_distance = (p_S.cwiseAbs() - shape_.radii()).cwiseMax(S(0)).norm();
+      lower = std::max(box_distance, a * (g - S(1)));
+      upper = p_S.norm() * (S(1) - S(1) / g);
+    }
+    best_upper_ = std::min(best_upper_, upper);
+    if (lower <= best_upper_) candidates_.push_back({v, lower});
   }
 
   void descendForDistance(int node) {
@@ -186,15 +266,15 @@ class VertexTraversal {
       return;
     }
     int first = n.leftChild(), second = n.rightChild();
-    S bound_first = lowerBound(model_.getBV(first).bv);
-    S bound_second = lowerBound(model_.getBV(second).bv);
+    S bound_first = boundOf(first, best_upper_);
+    S bound_second = boundOf(second, best_upper_);
     if (bound_second < bound_first) {
       std::swap(first, second);
       std::swap(bound_first, bound_second);
     }
-    // Nearer child first: its answer lets the other be culled.
-    if (best_.vertex < 0 || bound_first < best_.distance) descendForDistance(first);
-    if (best_.vertex < 0 || bound_second < best_.distance) descendForDistance(second);
+    // Nearer child first: its bounds let the other be culled.
+    if (bound_first <= best_upper_) descendForDistance(first);
+    if (bound_second <= best_upper_) descendForDistance(second);
   }
 
   bool full() const { return !with_depth_ && hits_.size() >= max_count_; }
@@ -202,15 +282,14 @@ class VertexTraversal {
   void testForCollision(int v) {
     ++stats_.vertices_bounded;
     const Vector3<S> p_S = inShapeFrame(v);
-    if (!(shape_.gauge(p_S) < S(1))) return;  // on or outside the surface
+    if (!(gauge_.value(p_S.cwiseAbs()) < S(1))) return;  // on or outside the surface
     if (!with_depth_) {
       VertexHit<S> hit;
       hit.vertex = v;
       hits_.push_back(hit);
       return;
     }
-    const VertexHit<S> hit = solve(v, p_S);
-    if (hit.distance < S(0)) hits_.push_back(hit);
+    inside_.push_back(v);  // solved together after the traversal
   }
 
   void descendForCollision(int node) {
@@ -223,7 +302,7 @@ class VertexTraversal {
       return;
     }
     for (int child : {n.leftChild(), n.rightChild()}) {
-      if (lowerBound(model_.getBV(child).bv) < S(0)) descendForCollision(child);
+      if (boundOf(child, S(0)) < S(0)) descendForCollision(child);
     }
   }
 
@@ -233,13 +312,24 @@ class VertexTraversal {
   Vector3<S> centre_M_;    // the shape's centre in M
   fcl::Matrix3<S> R_MS_;   // the shape's axes in M
   NestedNorm<S> support_;  // h, in the shape's frame
+  NestedNorm<S> gauge_;    // G, in the shape's frame
   DistanceOptions<S> options_;
   VertexTraversalStats& stats_;
   std::unordered_set<int> seen_;  // triangle meshes: vertices already tested
+  // Distance: the least upper bound so far, the vertices that may still beat it, and with
+  // stop_at_penetration the first vertex found inside.
+  struct Candidate {
+    int vertex;
+    S lower;
+  };
   bool stop_at_penetration_ = false;
-  VertexHit<S> best_;
+  S best_upper_ = std::numeric_limits<S>::infinity();
+  std::vector<Candidate> candidates_;
+  int penetrator_ = -1;
+  // Collision: the vertices found inside (with depths), or the hits without depths.
   std::size_t max_count_ = 0;
   bool with_depth_ = true;
+  std::vector<int> inside_;
   std::vector<VertexHit<S>> hits_;
 };
 
