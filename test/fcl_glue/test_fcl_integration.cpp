@@ -335,6 +335,33 @@ TEST(FclIntegration, TraversalCullsFarVertices) {
               1e-9);
 }
 
+// Many penetrating vertices: the traversal hands them to the batched queries, which cut them
+// into chunks on several threads. Every contact and the distance still match brute force, for
+// a smooth and a creased shape (the inside certificate on and off), float and double.
+TYPED_TEST(FclIntegrationTest, ManyContactsMatchBruteForce) {
+  using S = TypeParam;
+  std::mt19937 rng(6);
+  for (const auto& e : std::vector<std::array<double, 2>>{{0.4, 0.3}, {1.3, 0.7}}) {
+    const auto shape = std::make_shared<Superellipsoid<S>>(S(1.2), S(1), S(0.8), S(e[0]), S(e[1]));
+    SCOPED_TRACE(test::describe(*shape));
+    const TriangleMesh<S> cloud = randomCloud<S>(rng, 6000, S(1.3));
+    const auto model = makeBVHModel<fcl::OBBRSS<S>>(cloud);
+    const fcl::Transform3<S> X_WS = randomPose<S>(rng, S(0.1));
+    fcl::CollisionObject<S> o_shape(shape, X_WS), o_cloud(model);
+    const Brute<S> truth = bruteForce(cloud, fcl::Transform3<S>::Identity(), *shape, X_WS);
+    ASSERT_GT(truth.inside.size(), 1100u);  // enough for the batched queries' threads
+    fcl::CollisionResult<S> result;
+    fcl_superellipsoid::collide(&o_shape, &o_cloud, fcl::CollisionRequest<S>(100000, true), result);
+    ASSERT_EQ(result.numContacts(), truth.inside.size());
+    for (std::size_t k = 0; k < truth.inside.size(); ++k) {
+      EXPECT_NEAR(result.getContact(k).penetration_depth, -truth.inside[k].first, tolerance<S>());
+    }
+    fcl::DistanceResult<S> distance;
+    fcl_superellipsoid::distance(&o_shape, &o_cloud, fcl::DistanceRequest<S>(true, true), distance);
+    EXPECT_NEAR(distance.min_distance, truth.distance, tolerance<S>());
+  }
+}
+
 // Per-shape options reach the vertex queries.
 TEST(FclIntegration, ShapeOptionsReachTheQueries) {
   const auto shape = std::make_shared<Superellipsoidd>(1, 0.6, 0.4, 1.7, 0.3);

@@ -4,6 +4,8 @@
 
 #include <sstream>
 #include <stdexcept>
+#include <thread>
+#include <vector>
 
 #include "fcl_superellipsoid/superellipsoid.h"
 #include "test_helpers.h"
@@ -290,6 +292,24 @@ TYPED_TEST(SuperellipsoidTest, RollingRadiusMatchesClosedForms) {
   for (const auto& e : std::vector<std::array<double, 2>>{{1.01, 0.5}, {0.5, 1.5}, {1.9, 1.9}}) {
     EXPECT_EQ(Superellipsoid<S>(S(1), S(2), S(3), S(e[0]), S(e[1])).minRadiusOfCurvature(), S(0));
   }
+}
+
+// The rolling radius is computed on first use and kept; threads that ask at once all get the
+// same value, and so does a copy of the shape (run under ThreadSanitizer by the TSan build).
+TYPED_TEST(SuperellipsoidTest, RollingRadiusIsComputedOnceForAllThreads) {
+  using S = TypeParam;
+  const Superellipsoid<S> reference{S(3.5), S(3), S(2), S(0.4), S(0.3)};
+  const S expected = reference.minRadiusOfCurvature();
+  const Superellipsoid<S> shape{S(3.5), S(3), S(2), S(0.4), S(0.3)};
+  std::vector<S> seen(8);
+  std::vector<std::thread> threads;
+  for (std::size_t t = 0; t < seen.size(); ++t) {
+    threads.emplace_back([&shape, &seen, t] { seen[t] = shape.minRadiusOfCurvature(); });
+  }
+  for (std::thread& t : threads) t.join();
+  for (S value : seen) EXPECT_EQ(value, expected);
+  const Superellipsoid<S> copy = shape;
+  EXPECT_EQ(copy.minRadiusOfCurvature(), expected);
 }
 
 // The rolling-ball property by construction, against the independent long-double gauge: the
