@@ -12,10 +12,13 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cstdint>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "batch/batch_kernel.h"
 #include "common/invalid_argument.h"
@@ -52,6 +55,22 @@ void forEachChunk(Eigen::Index n, const BatchOptions<S>& options, const Body& bo
     for (Eigen::Index c = 0; c < chunks; ++c) run(c);
     return;
   }
+#if defined(__SANITIZE_THREAD__)
+  // ThreadSanitizer cannot see TBB's synchronisation (Debian's libtbb is not instrumented), so in
+  // the TSan build (scripts/test.sh --tsan) the same chunks run on std::threads, joined visibly:
+  // its reports are then about this library's shared state, not TBB's scheduler.
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const int threads = options.threads > 1 ? options.threads : int(cores);
+  std::atomic<Eigen::Index> next{0};
+  std::vector<std::thread> pool;
+  for (int t = 0; t < threads; ++t) {
+    pool.emplace_back([&] {
+      for (Eigen::Index c = next++; c < chunks; c = next++) run(c);
+    });
+  }
+  for (std::thread& t : pool) t.join();
+  return;
+#endif
   auto parallel = [&] {
     tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, chunks, 1),
                       [&](const tbb::blocked_range<Eigen::Index>& r) {
