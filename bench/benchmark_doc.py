@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Writes the benchmark's results document from a run's output directory.
 
-    /usr/bin/python3 bench/benchmark_doc.py OUT [--docs DOCS] [--readme README.md]
+    /usr/bin/python3 bench/benchmark_doc.py OUT [--docs DOCS] [--readme README.md] [--commit REV]
 
 Reads OUT/results.json and OUT/scaling.csv (fse_bench), and if present OUT/micro.json
 (fse_microbench --benchmark_out), OUT/culling.txt (fse_bench --culling N) and
@@ -284,9 +284,11 @@ def headline(rows, scaling_csv):
 
 
 def git_commit():
+    """HEAD, marked if the source differs from it (what this script and the run write is not source)."""
     try:
         commit = subprocess.check_output(["git", "rev-parse", "--short", "HEAD"], cwd=HERE, text=True).strip()
-        dirty = subprocess.check_output(["git", "status", "--porcelain", "--untracked-files=no"], cwd=HERE, text=True)
+        dirty = subprocess.check_output(["git", "status", "--porcelain", "--untracked-files=no", "--",
+                                         ".", ":!docs", ":!README.md"], cwd=os.path.dirname(HERE), text=True)
         return commit + (" (with uncommitted changes)" if dirty.strip() else "")
     except (OSError, subprocess.CalledProcessError):
         return "unknown"
@@ -297,6 +299,7 @@ def main():
     parser.add_argument("out")
     parser.add_argument("--docs")
     parser.add_argument("--readme")
+    parser.add_argument("--commit", help="the commit whose build made OUT (default: HEAD)")
     args = parser.parse_args()
 
     results = os.path.join(args.out, "results.json")
@@ -313,7 +316,7 @@ def main():
     }
     missing = "_Not in this run (see the command above)._"
     values = {
-        "run": (f"Run at commit {git_commit()} on {datetime.date.today().isoformat()}; machine: {meta['machine']}; "
+        "run": (f"Run at commit {args.commit or git_commit()} on {datetime.date.today().isoformat()}; machine: {meta['machine']}; "
                 f"compiler {meta.get('compiler', '?')}; {meta['points']} points per shape and point set, "
                 f"{meta['reference_points']} inside reference points, {meta['repetitions']} timed repetitions."),
         "paper_tables": paper_tables(rows),
