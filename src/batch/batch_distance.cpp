@@ -130,14 +130,13 @@ class VertexSolver {
         p_WV_(p_WV),
         options_(options),
         simd_(options.vectorize && options.distance.method == DistanceMethod::kExact),
-        problem_{detail::NestedNorm<S>::gauge(shape),
-                 detail::NestedNorm<S>::support(shape),
-                 shape.radii(),
-                 detail::primalIsSmoother(shape),
-                 options.distance.tolerance * shape.size(),
-                 shape.size(),
+        problem_{detail::NestedNorm<S>::gauge(shape), detail::NestedNorm<S>::support(shape),
+                 shape.radii(), detail::primalIsSmoother(shape),
+                 options.distance.tolerance * shape.size(), shape.size(),
                  options.distance.max_iterations,
-                 shape.minRadiusOfCurvature()} {
+                 // Only the SIMD kernel reads it; its first computation per shape costs
+                 // milliseconds, which a Paper or Radial batch should not pay.
+                 simd_ ? shape.minRadiusOfCurvature() : S(0)} {
     validateOptions(options.distance);
     checkVertices<S>(function, p_WV);
     if (options.warm_start_W != nullptr && options.warm_start_W->cols() != p_WV.cols()) {
