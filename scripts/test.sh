@@ -1,25 +1,32 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, and runs the whole test suite.
-#   scripts/test.sh              Release build in build/
-#   scripts/test.sh --sanitize   AddressSanitizer + UBSan build in build-asan/
-#   scripts/test.sh --tsan       ThreadSanitizer build in build-tsan/: the tests of what threads
-#                                share (batched queries, the lazily computed rolling radius, the
-#                                FCL traversal that calls the batched queries)
+# Installs what is missing, builds, and runs the test suite (docs/hardening.md).
+#   scripts/test.sh              Release build in build/: the whole suite
+#   scripts/test.sh --sanitize   clang, AddressSanitizer + UBSan, in build-asan/: the whole suite but
+#                                the packaging tests, and a smoke run of each fuzz target
+#   scripts/test.sh --tsan       gcc, ThreadSanitizer, in build-tsan/: the tests of what threads
+#                                share (thread safety, batched queries, the lazily computed rolling
+#                                radius, the FCL traversal that calls the batched queries)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=build
 flags=(-DCMAKE_BUILD_TYPE=Release)
+deps=()
 tests=()
 case "${1:-}" in
   --sanitize)
     build=build-asan
-    flags=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DFSE_SANITIZE=ON) ;;
+    deps=(--fuzz)
+    flags=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DFSE_BUILD_FUZZ=ON
+           -DFSE_BUILD_BENCH=OFF)
+    tests=(-E "^package_") ;;
   --tsan)
     build=build-tsan
     flags=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DFSE_SANITIZE_THREAD=ON -DFSE_BUILD_BENCH=OFF)
-    tests=(-R "BatchDistance|RollingRadiusIsComputedOnce|FclIntegration") ;;
+    tests=(-R "ThreadSafety|BatchDistance|RollingRadiusIsComputedOnce|FclIntegration") ;;
+  "") ;;
+  *) echo "usage: scripts/test.sh [--sanitize | --tsan]" >&2; exit 2 ;;
 esac
-scripts/install-deps.sh
+scripts/install-deps.sh "${deps[@]}"
 cmake -S . -B "$build" "${flags[@]}" -DFSE_BUILD_TESTS=ON
 cmake --build "$build" --parallel "$(nproc)"
 cd "$build"

@@ -26,6 +26,9 @@
 ///    broadphase callbacks below are FCL's DefaultCollisionFunction / DefaultDistanceFunction
 ///    with the front end inside.
 ///
+/// Bad input (the front end and the table entries): a null object or geometry, or a pose that
+/// is not finite, is refused with std::invalid_argument naming it (docs/hardening.md).
+///
 /// Counters of the traversal behind these calls (how many vertices a query reached) are in
 /// diagnostics.h.
 ///

@@ -35,6 +35,25 @@ namespace fcl_superellipsoid {
 template <typename S>
 using Vector3 = fcl::Vector3<S>;
 
+/// The numeric range of the shape (docs/hardening.md → "Numeric range"): every radius in
+/// [kMinRadius, kMaxRadius], and the largest at most kMaxAspectRatio × the smallest. Inside it
+/// the mass properties stay finite and non-zero, and every query on a finite point gives a
+/// finite answer (points far beyond the shape included); the constructor refuses radii outside.
+template <typename S>
+struct NumericRange;
+template <>
+struct NumericRange<double> {
+  static constexpr double kMinRadius = 1e-50;
+  static constexpr double kMaxRadius = 1e50;
+  static constexpr double kMaxAspectRatio = 1e8;
+};
+template <>
+struct NumericRange<float> {
+  static constexpr float kMinRadius = 1e-6f;
+  static constexpr float kMaxRadius = 1e6f;
+  static constexpr float kMaxAspectRatio = 1e6f;
+};
+
 namespace detail {
 /// A value computed on first use and then kept (copies keep it too). Thread-safe: threads that
 /// race on the first use compute the same value and store it.
@@ -75,8 +94,9 @@ class CachedValue {
 template <typename S>
 class FSE_EXPORT Superellipsoid : public fcl::ShapeBase<S> {
  public:
-  /// @throws std::invalid_argument if a radius is not finite and positive, or an exponent
-  ///         is not finite or not in (0, 2). The message names the parameter and its value.
+  /// @throws std::invalid_argument if a radius is not finite and in NumericRange<S>, the radii's
+  ///         aspect ratio exceeds NumericRange<S>::kMaxAspectRatio, or an exponent is not finite
+  ///         or not in (0, 2). The message names the parameter and its value.
   /// Registers with FCL's tables on first use (see the class comment).
   Superellipsoid(S a1, S a2, S a3, S eps1, S eps2);
   Superellipsoid(const Vector3<S>& radii, S eps1, S eps2);
@@ -86,6 +106,9 @@ class FSE_EXPORT Superellipsoid : public fcl::ShapeBase<S> {
   S eps2() const { return eps2_; }
   /// The largest radius: the length scale used for size-relative tolerances.
   S size() const { return radii_.maxCoeff(); }
+
+  /// The evaluations below take a point p_S in the shape's frame.
+  /// @throws std::invalid_argument if p_S (or η, ω) is not finite, naming it.
 
   /// F(p_S), the paper's inside–outside function (1 on the surface). Overflows to +inf for
   /// far points with small ε2; prefer gauge().

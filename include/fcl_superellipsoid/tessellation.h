@@ -24,6 +24,9 @@ struct TriangleMesh {
   std::vector<fcl::Triangle> triangles;
 };
 
+/// The most vertices tessellate() makes (a mesh of a few GB); more is refused, not attempted.
+constexpr int kMaxTessellationVertices = 100000000;
+
 /// Tessellates the surface into a closed mesh with exactly num_vertices vertices, every one
 /// on the surface to rounding (G = 1).
 ///
@@ -40,7 +43,7 @@ struct TriangleMesh {
 /// edges (with ε2 = 0.02 every ring lies within a few percent of the rim), and rings that
 /// nearly coincide fold triangles inwards. Radial projection keeps rings apart for every ε.
 ///
-/// @throws std::invalid_argument if num_vertices < 5.
+/// @throws std::invalid_argument if num_vertices is not in [5, kMaxTessellationVertices].
 template <typename S>
 FSE_EXPORT TriangleMesh<S> tessellate(const Superellipsoid<S>& shape, int num_vertices);
 
@@ -52,10 +55,17 @@ FSE_EXPORT void writeObj(const TriangleMesh<S>& mesh, std::ostream& out);
 template <typename S>
 FSE_EXPORT void writeObj(const TriangleMesh<S>& mesh, const std::string& path);
 
+/// Checks a mesh for makeBVHModel: at least one vertex, every vertex finite, every triangle's
+/// indices in range. @throws std::invalid_argument naming the first bad vertex or triangle.
+template <typename S>
+FSE_EXPORT void checkMesh(const TriangleMesh<S>& mesh);
+
 /// Builds an FCL BVH model (any BV type: AABB, OBB, RSS, kIOS, OBBRSS, KDOP<S, 16|18|24>)
 /// of the mesh, in the mesh's frame. With no triangles, it builds a point cloud.
+/// @throws std::invalid_argument as checkMesh().
 template <typename BV>
 std::shared_ptr<fcl::BVHModel<BV>> makeBVHModel(const TriangleMesh<typename BV::S>& mesh) {
+  checkMesh(mesh);
   auto model = std::make_shared<fcl::BVHModel<BV>>();
   model->beginModel(static_cast<int>(mesh.triangles.size()),
                     static_cast<int>(mesh.vertices.size()));
@@ -70,6 +80,8 @@ std::shared_ptr<fcl::BVHModel<BV>> makeBVHModel(const TriangleMesh<typename BV::
 
 extern template FSE_EXPORT TriangleMesh<float> tessellate(const Superellipsoid<float>&, int);
 extern template FSE_EXPORT TriangleMesh<double> tessellate(const Superellipsoid<double>&, int);
+extern template FSE_EXPORT void checkMesh(const TriangleMesh<float>&);
+extern template FSE_EXPORT void checkMesh(const TriangleMesh<double>&);
 extern template FSE_EXPORT void writeObj(const TriangleMesh<float>&, std::ostream&);
 extern template FSE_EXPORT void writeObj(const TriangleMesh<double>&, std::ostream&);
 extern template FSE_EXPORT void writeObj(const TriangleMesh<float>&, const std::string&);

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "batch/batch_kernel.h"
+#include "common/coordinate_range.h"
 #include "common/invalid_argument.h"
 #include "fcl_superellipsoid/point_distance.h"
 #include "solvers/solvers.h"
@@ -36,6 +37,13 @@ void checkVertices(const char* function, const Eigen::Ref<const Matrix3X<S>>& p_
     if (!p_WV.col(i).allFinite()) {
       detail::throwInvalidArgument(function, "vertex " + std::to_string(i) + " must be finite",
                                    p_WV.col(i));
+    }
+    if (!detail::withinCoordinateRange(p_WV.col(i))) {
+      detail::throwInvalidArgument(
+          function,
+          "vertex " + std::to_string(i) + "'s coordinates must be at most " +
+              detail::formatValue(detail::maxCoordinate<S>()) + " in magnitude",
+          p_WV.col(i));
     }
   }
 }
@@ -138,6 +146,16 @@ class VertexSolver {
                  // milliseconds, which a Paper or Radial batch should not pay.
                  simd_ ? shape.minRadiusOfCurvature() : S(0)} {
     validateOptions(options.distance);
+    if (options.threads < 0) {
+      detail::throwInvalidArgument(function, "options.threads must be >= 0", options.threads);
+    }
+    if (!X_WS.matrix().allFinite() || !detail::withinCoordinateRange(X_WS.translation())) {
+      detail::throwInvalidArgument(function,
+                                   "the pose X_WS must be finite, its translation at most " +
+                                       detail::formatValue(detail::maxCoordinate<S>()) +
+                                       " in magnitude",
+                                   X_WS.translation());
+    }
     checkVertices<S>(function, p_WV);
     if (options.warm_start_W != nullptr && options.warm_start_W->cols() != p_WV.cols()) {
       detail::throwInvalidArgument(function,
@@ -164,12 +182,20 @@ class VertexSolver {
       return;
     }
     ChunkLanes<S> lanes;
+    std::size_t far = 0;  // solved by the scalar path
     std::array<Eigen::Index, kChunk> vertex;
     std::array<Vector3<S>, kChunk> p_SV;
     for (Eigen::Index i = first; i < last; ++i) {
       const std::size_t k = lanes.count;
       p_SV[k] = inShapeFrame(i);
       if (!keep(p_SV[k])) continue;
+      // Far away, squares may overflow in the kernel; near the centre, subnormal coordinates
+      // lose their direction: both have their own answer in the scalar path.
+      if (detail::isFarQuery(shape_, p_SV[k]) || detail::isNearCentreQuery(shape_, p_SV[k])) {
+        emit(i, solve(i, p_SV[k]));
+        ++far;
+        continue;
+      }
       vertex[k] = i;
       for (int c = 0; c < 3; ++c) lanes.query[c][k] = std::abs(p_SV[k][c]);
       if (options_.warm_start_W != nullptr) {
@@ -178,8 +204,8 @@ class VertexSolver {
       }
       ++lanes.count;
     }
-    const std::size_t culled = std::size_t(last - first) - lanes.count;
-    if (lanes.count == 0) return count(culled, 0, 0);
+    const std::size_t culled = std::size_t(last - first) - lanes.count - far;
+    if (lanes.count == 0) return count(culled, 0, far);
     const bool with_hints = options_.warm_start_W != nullptr;
     lanes.pad(with_hints);
     detail::solveLanes(problem_, lanes.arrays(with_hints), lanes.count, false);
@@ -221,7 +247,7 @@ class VertexSolver {
       r.normal = X_WS_.linear() * r.normal;
       emit(vertex[k], r);
     }
-    count(culled, lanes.count - handed_back, handed_back);
+    count(culled, lanes.count - handed_back, handed_back + far);
   }
 
   /// Writes the counts of all chunks to BatchOptions::statistics, if set.
@@ -320,7 +346,13 @@ void verticesWithinMargin(const Superellipsoid<S>& shape,
     solver.solveChunk(
         first, last,
         // The shape lies in its box [−a, a]: the distance to the box is a lower bound.
-        [&](const Vector3<S>& p_SV) { return (p_SV.cwiseAbs() - a).cwiseMax(S(0)).norm() <= cull; },
+        // (Its norm can overflow far away; then the largest coordinate decides.)
+        [&](const Vector3<S>& p_SV) {
+          const Vector3<S> gap = (p_SV.cwiseAbs() - a).cwiseMax(S(0));
+          const S largest = gap.maxCoeff();
+          return largest <= cull &&
+                 (gap.norm() <= cull || (gap / largest).norm() * largest <= cull);
+        },
         [&](Eigen::Index i, const PointDistanceResult<S>& r) {
           if (r.distance <= margin) out.push_back({i, r.distance, r.nearest_point, r.normal});
         });

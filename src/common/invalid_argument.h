@@ -9,7 +9,7 @@
 // e.g. "pointDistance: options.tolerance must be finite and > 0, got -0.001". Scalars are
 // printed with enough digits to round-trip (max_digits10 of their type), so the value in the
 // message is the value the caller passed; vectors as "(x, y, z)". The catalogue of what each
-// entry point refuses is docs/design.md → "Bad input".
+// entry point refuses is docs/hardening.md → "Bad input".
 
 #include <Eigen/Core>
 #include <iomanip>
@@ -38,6 +38,15 @@ void writeValue(std::ostream& out, const T& value) {
   } else {
     out << value;
   }
+}
+
+/// A limit written into a requirement ("must be in [1e-50, 1e+50]"): six significant digits,
+/// enough for the round limits the library states.
+template <typename T>
+std::string formatValue(const T& value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
 }
 
 /// Throws std::invalid_argument("<where>: <requirement>, got <value>").

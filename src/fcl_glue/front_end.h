@@ -5,15 +5,36 @@
 // (double) and front_end_float.cpp (float: plain FCL for float is not in libfcl, so that TU
 // instantiates it, at the cost of FCL's other solver's tables).
 
+#include "common/invalid_argument.h"
 #include "fcl_glue/pairs/pairs.h"
 #include "fcl_superellipsoid/fcl_integration.h"
 
 namespace fcl_superellipsoid {
+namespace detail {
+
+/// Refuses a null object or geometry (FCL would dereference it).
+template <typename Object>
+void checkNotNull(const char* where, const Object* o1, const Object* o2) {
+  if (o1 == nullptr || o2 == nullptr) {
+    throwInvalidArgument(where, "o1 and o2 must not be null",
+                         o1 == nullptr ? "o1 = null" : "o2 = null");
+  }
+}
+
+template <typename S>
+void checkGeometries(const char* where, const fcl::CollisionObject<S>* o1,
+                     const fcl::CollisionObject<S>* o2) {
+  checkNotNull(where, o1, o2);
+  checkNotNull(where, o1->collisionGeometry().get(), o2->collisionGeometry().get());
+}
+
+}  // namespace detail
 
 template <typename S>
 S distance(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1,
            const fcl::CollisionGeometry<S>* o2, const fcl::Transform3<S>& tf2,
            const fcl::DistanceRequest<S>& request, fcl::DistanceResult<S>& result) {
+  detail::checkNotNull("fcl_superellipsoid::distance", o1, o2);
   if (!detail::involvesSuperellipsoid(o1, o2)) {
     return fcl::distance(o1, tf1, o2, tf2, request, result);
   }
@@ -25,6 +46,7 @@ S distance(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1,
 template <typename S>
 S distance(const fcl::CollisionObject<S>* o1, const fcl::CollisionObject<S>* o2,
            const fcl::DistanceRequest<S>& request, fcl::DistanceResult<S>& result) {
+  detail::checkGeometries("fcl_superellipsoid::distance", o1, o2);
   return fcl_superellipsoid::distance(o1->collisionGeometry().get(), o1->getTransform(),
                                       o2->collisionGeometry().get(), o2->getTransform(), request,
                                       result);
@@ -34,6 +56,7 @@ template <typename S>
 std::size_t collide(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1,
                     const fcl::CollisionGeometry<S>* o2, const fcl::Transform3<S>& tf2,
                     const fcl::CollisionRequest<S>& request, fcl::CollisionResult<S>& result) {
+  detail::checkNotNull("fcl_superellipsoid::collide", o1, o2);
   if (!detail::involvesSuperellipsoid(o1, o2)) {
     return fcl::collide(o1, tf1, o2, tf2, request, result);
   }
@@ -47,6 +70,7 @@ std::size_t collide(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S
 template <typename S>
 std::size_t collide(const fcl::CollisionObject<S>* o1, const fcl::CollisionObject<S>* o2,
                     const fcl::CollisionRequest<S>& request, fcl::CollisionResult<S>& result) {
+  detail::checkGeometries("fcl_superellipsoid::collide", o1, o2);
   return fcl_superellipsoid::collide(o1->collisionGeometry().get(), o1->getTransform(),
                                      o2->collisionGeometry().get(), o2->getTransform(), request,
                                      result);
@@ -55,6 +79,11 @@ std::size_t collide(const fcl::CollisionObject<S>* o1, const fcl::CollisionObjec
 template <typename S>
 bool defaultCollisionFunction(fcl::CollisionObject<S>* o1, fcl::CollisionObject<S>* o2,
                               void* data) {
+  detail::checkNotNull("fcl_superellipsoid::defaultCollisionFunction", o1, o2);
+  if (data == nullptr) {
+    detail::throwInvalidArgument("fcl_superellipsoid::defaultCollisionFunction",
+                                 "data must point to an fcl::DefaultCollisionData", "null");
+  }
   auto* collision_data = static_cast<fcl::DefaultCollisionData<S>*>(data);
   const fcl::CollisionRequest<S>& request = collision_data->request;
   fcl::CollisionResult<S>& result = collision_data->result;
@@ -70,6 +99,11 @@ bool defaultCollisionFunction(fcl::CollisionObject<S>* o1, fcl::CollisionObject<
 template <typename S>
 bool defaultDistanceFunction(fcl::CollisionObject<S>* o1, fcl::CollisionObject<S>* o2, void* data,
                              S& dist) {
+  detail::checkNotNull("fcl_superellipsoid::defaultDistanceFunction", o1, o2);
+  if (data == nullptr) {
+    detail::throwInvalidArgument("fcl_superellipsoid::defaultDistanceFunction",
+                                 "data must point to an fcl::DefaultDistanceData", "null");
+  }
   auto* distance_data = static_cast<fcl::DefaultDistanceData<S>*>(data);
   fcl::DistanceResult<S>& result = distance_data->result;
   if (distance_data->done) {

@@ -19,6 +19,26 @@ void checkRadius(const char* name, S value) {
     detail::throwInvalidArgument("Superellipsoid", std::string(name) + " must be finite and > 0",
                                  value);
   }
+  using Range = NumericRange<S>;
+  if (!(value >= Range::kMinRadius && value <= Range::kMaxRadius)) {
+    detail::throwInvalidArgument("Superellipsoid",
+                                 std::string(name) + " must be in the supported range [" +
+                                     detail::formatValue(Range::kMinRadius) + ", " +
+                                     detail::formatValue(Range::kMaxRadius) + "]",
+                                 value);
+  }
+}
+
+template <typename S>
+void checkAspectRatio(const Vector3<S>& radii) {
+  const S ratio = radii.maxCoeff() / radii.minCoeff();
+  if (!(ratio <= NumericRange<S>::kMaxAspectRatio)) {
+    detail::throwInvalidArgument("Superellipsoid",
+                                 "the largest radius may be at most " +
+                                     detail::formatValue(NumericRange<S>::kMaxAspectRatio) +
+                                     " x the smallest, radii",
+                                 radii);
+  }
 }
 
 template <typename S>
@@ -26,6 +46,15 @@ void checkExponent(const char* name, S value) {
   if (!(std::isfinite(value) && value > S(0) && value < S(2))) {
     detail::throwInvalidArgument("Superellipsoid",
                                  std::string(name) + " must be in the open interval (0, 2)", value);
+  }
+}
+
+/// The evaluations' one check: a point that is not finite has no gauge, normal or projection.
+template <typename S>
+void checkPoint(const char* function, const Vector3<S>& p_S) {
+  if (!p_S.allFinite()) {
+    detail::throwInvalidArgument(std::string("Superellipsoid::") + function,
+                                 "the point must be finite", p_S);
   }
 }
 
@@ -41,6 +70,7 @@ Superellipsoid<S>::Superellipsoid(const Vector3<S>& radii, S eps1, S eps2)
   checkRadius("radius a1", radii[0]);
   checkRadius("radius a2", radii[1]);
   checkRadius("radius a3", radii[2]);
+  checkAspectRatio(radii);
   checkExponent("exponent eps1", eps1);
   checkExponent("exponent eps2", eps2);
   computeLocalAABB();
@@ -65,22 +95,26 @@ void Superellipsoid<S>::setQueryOptions(const DistanceOptions<S>& options) {
 
 template <typename S>
 S Superellipsoid<S>::gauge(const Vector3<S>& p_S) const {
+  checkPoint("gauge", p_S);
   return detail::NestedNorm<S>::gauge(*this).value(p_S.cwiseAbs());
 }
 
 template <typename S>
 S Superellipsoid<S>::implicitFunction(const Vector3<S>& p_S) const {
+  checkPoint("implicitFunction", p_S);
   return std::pow(gauge(p_S), S(2) / eps2_);
 }
 
 template <typename S>
 Vector3<S> Superellipsoid<S>::gaugeGradient(const Vector3<S>& p_S) const {
+  checkPoint("gaugeGradient", p_S);
   const Vector3<S> g = detail::NestedNorm<S>::gauge(*this).evaluate(p_S.cwiseAbs(), false).gradient;
   return detail::intoOctantOf(p_S, g);
 }
 
 template <typename S>
 Vector3<S> Superellipsoid<S>::implicitGradient(const Vector3<S>& p_S) const {
+  checkPoint("implicitGradient", p_S);
   // F = G^(2/ε2)  ⇒  ∇F = (2/ε2)·G^(2/ε2 − 1)·∇G.
   const S p2 = S(2) / eps2_;
   return p2 * std::pow(gauge(p_S), p2 - S(1)) * gaugeGradient(p_S);
@@ -88,6 +122,7 @@ Vector3<S> Superellipsoid<S>::implicitGradient(const Vector3<S>& p_S) const {
 
 template <typename S>
 Vector3<S> Superellipsoid<S>::normal(const Vector3<S>& p_S) const {
+  checkPoint("normal", p_S);
   const Vector3<S> g = gaugeGradient(p_S);
   const S n = g.norm();
   if (!(n > S(0))) return Vector3<S>::UnitZ();
@@ -96,22 +131,29 @@ Vector3<S> Superellipsoid<S>::normal(const Vector3<S>& p_S) const {
 
 template <typename S>
 S Superellipsoid<S>::radialDistance(const Vector3<S>& p_S) const {
-  const S len = p_S.norm();
-  if (len == S(0)) return -radii_.minCoeff();
+  checkPoint("radialDistance", p_S);
+  const S largest = p_S.cwiseAbs().maxCoeff();  // (scaled first: ‖p‖² may overflow)
+  if (largest == S(0)) return -radii_.minCoeff();
+  const S len = largest * (p_S / largest).norm();
   // ‖p‖·(1 − 1/G(p)) = ‖p‖ − 1/G(p/‖p‖): the second form stays exact as p → 0.
   return len - S(1) / gauge(Vector3<S>(p_S / len));
 }
 
 template <typename S>
 Vector3<S> Superellipsoid<S>::radialProjection(const Vector3<S>& p_S) const {
-  const S len = p_S.norm();
-  if (len == S(0)) return Vector3<S>(S(0), S(0), radii_[2]);
-  const Vector3<S> dir = p_S / len;
+  checkPoint("radialProjection", p_S);
+  const S largest = p_S.cwiseAbs().maxCoeff();  // (scaled first: ‖p‖² may overflow)
+  if (largest == S(0)) return Vector3<S>(S(0), S(0), radii_[2]);
+  const Vector3<S> dir = (p_S / largest).normalized();
   return dir / gauge(dir);
 }
 
 template <typename S>
 Vector3<S> Superellipsoid<S>::surfacePoint(S eta, S omega) const {
+  if (!(std::isfinite(eta) && std::isfinite(omega))) {
+    detail::throwInvalidArgument("Superellipsoid::surfacePoint", "eta and omega must be finite",
+                                 Eigen::Matrix<S, 2, 1>(eta, omega));
+  }
   using detail::signedPow;
   const S ce = signedPow(std::cos(eta), eps2_);
   return Vector3<S>(radii_[0] * ce * signedPow(std::cos(omega), eps1_),
@@ -121,6 +163,7 @@ Vector3<S> Superellipsoid<S>::surfacePoint(S eta, S omega) const {
 
 template <typename S>
 bool Superellipsoid<S>::contains(const Vector3<S>& p_S) const {
+  checkPoint("contains", p_S);
   return gauge(p_S) <= S(1);
 }
 

@@ -8,6 +8,7 @@
 #include <numeric>
 #include <ostream>
 #include <stdexcept>
+#include <string>
 
 #include "common/invalid_argument.h"
 
@@ -33,8 +34,11 @@ std::vector<int> ringSizes(int ring_vertices) {
 
 template <typename S>
 TriangleMesh<S> tessellate(const Superellipsoid<S>& shape, int num_vertices) {
-  if (num_vertices < 5) {
-    detail::throwInvalidArgument("tessellate", "num_vertices must be >= 5", num_vertices);
+  if (num_vertices < 5 || num_vertices > kMaxTessellationVertices) {
+    detail::throwInvalidArgument(
+        "tessellate",
+        "num_vertices must be in [5, " + std::to_string(kMaxTessellationVertices) + "]",
+        num_vertices);
   }
   const double pi = 3.14159265358979323846;
   const std::vector<int> sizes = ringSizes(num_vertices - 2);
@@ -94,6 +98,29 @@ TriangleMesh<S> tessellate(const Superellipsoid<S>& shape, int num_vertices) {
 }
 
 template <typename S>
+void checkMesh(const TriangleMesh<S>& mesh) {
+  if (mesh.vertices.empty()) {
+    detail::throwInvalidArgument("makeBVHModel", "the mesh must have a vertex, vertex count", 0);
+  }
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+    if (!mesh.vertices[i].allFinite()) {
+      detail::throwInvalidArgument(
+          "makeBVHModel", "vertex " + std::to_string(i) + " must be finite", mesh.vertices[i]);
+    }
+  }
+  const std::size_t n = mesh.vertices.size();
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const fcl::Triangle& tri = mesh.triangles[t];
+    if (tri[0] >= n || tri[1] >= n || tri[2] >= n) {
+      detail::throwInvalidArgument(
+          "makeBVHModel",
+          "triangle " + std::to_string(t) + " must index the " + std::to_string(n) + " vertices",
+          Eigen::Matrix<std::size_t, 3, 1>(tri[0], tri[1], tri[2]));
+    }
+  }
+}
+
+template <typename S>
 void writeObj(const TriangleMesh<S>& mesh, std::ostream& out) {
   out.precision(std::numeric_limits<S>::max_digits10);
   for (const auto& v : mesh.vertices) out << "v " << v[0] << ' ' << v[1] << ' ' << v[2] << '\n';
@@ -112,6 +139,8 @@ void writeObj(const TriangleMesh<S>& mesh, const std::string& path) {
 
 template TriangleMesh<float> tessellate(const Superellipsoid<float>&, int);
 template TriangleMesh<double> tessellate(const Superellipsoid<double>&, int);
+template void checkMesh(const TriangleMesh<float>&);
+template void checkMesh(const TriangleMesh<double>&);
 template void writeObj(const TriangleMesh<float>&, std::ostream&);
 template void writeObj(const TriangleMesh<double>&, std::ostream&);
 template void writeObj(const TriangleMesh<float>&, const std::string&);

@@ -1,5 +1,6 @@
 #include "fcl_superellipsoid/point_distance.h"
 
+#include "common/coordinate_range.h"
 #include "common/invalid_argument.h"
 #include "solvers/exact_rules.h"
 #include "solvers/solvers.h"
@@ -15,6 +16,11 @@ template <typename T>
 template <typename S>
 void validate(const Vector3<S>& p, const DistanceOptions<S>& options) {
   if (!p.allFinite()) throwInvalid("the query point must be finite", p);
+  if (!detail::withinCoordinateRange(p)) {
+    throwInvalid("the query point's coordinates must be at most " +
+                     detail::formatValue(detail::maxCoordinate<S>()) + " in magnitude",
+                 p);
+  }
   validateOptions(options);
 }
 
@@ -34,6 +40,13 @@ void validateOptions(const DistanceOptions<S>& options) {
   if (options.max_iterations < 1) {
     throwInvalid("options.max_iterations must be >= 1", options.max_iterations);
   }
+  switch (options.method) {
+    case DistanceMethod::kRadial:
+    case DistanceMethod::kPaper:
+    case DistanceMethod::kExact:
+      return;
+  }
+  throwInvalid("options.method must be a DistanceMethod", static_cast<int>(options.method));
 }
 
 template void validateOptions(const DistanceOptions<float>&);
@@ -62,8 +75,33 @@ PointDistanceResult<S> pointDistance(const Superellipsoid<S>& shape,
 namespace detail {
 
 template <typename S>
+PointDistanceResult<S> solveFar(const Superellipsoid<S>& shape, const Vector3<S>& p_SQ,
+                                S relative_tolerance) {
+  // ‖Q‖ > 2^digits·size: the nearest point differs from the support point in Q's direction by
+  // less than size²/‖Q‖ < ulp(size), and the error estimate (about the support point's offset
+  // across u, at most size) is below the rounding floor 8·ε·‖Q‖ ≥ 16·size.
+  const S scale = p_SQ.cwiseAbs().maxCoeff();
+  const Vector3<S> u = (p_SQ / scale).normalized();
+  PointDistanceResult<S> r;
+  r.nearest_point = shape.supportPoint(u);
+  r.normal = u;
+  r.distance = (p_SQ - r.nearest_point).stableNorm();
+  r.error = (r.nearest_point + r.distance * r.normal - p_SQ).stableNorm();
+  r.iterations = 0;
+  r.converged = r.error <=
+                exact_rules::absoluteTolerance(relative_tolerance, shape.size(), p_SQ.stableNorm());
+  return r;
+}
+
+template PointDistanceResult<float> solveFar(const Superellipsoid<float>&, const Vector3<float>&,
+                                             float);
+template PointDistanceResult<double> solveFar(const Superellipsoid<double>&, const Vector3<double>&,
+                                              double);
+
+template <typename S>
 PointDistanceResult<S> solve(const Superellipsoid<S>& shape, const Vector3<S>& p_SQ,
                              const Vector3<S>* hint, const DistanceOptions<S>& options) {
+  if (isFarQuery(shape, p_SQ)) return solveFar(shape, p_SQ, options.tolerance);
   // Below a few ulps of the query's magnitude no method can resolve the error estimate: the
   // tolerance has a rounding floor (exact_rules.h), for every method.
   const detail::Query<S> q{
@@ -72,6 +110,16 @@ PointDistanceResult<S> solve(const Superellipsoid<S>& shape, const Vector3<S>& p
   // At the exact centre the radial direction is undefined, so every method answers with the
   // Exact solver's centre search (documented in point_distance.h).
   if (p_SQ.isZero(S(0))) return detail::solveExact(q);
+  // So close to the centre that the query's coordinates are below the rounding of the shape's
+  // own (subnormal ones included), its direction is noise: every method answers with the
+  // centre's nearest point, reflected into the query's octant (docs/math.md → "Points near the
+  // centre, points far away").
+  if (detail::isNearCentreQuery(shape, p_SQ)) {
+    const detail::Query<S> centre{shape, Vector3<S>::Zero(), q.tolerance, q.max_iterations,
+                                  nullptr};
+    const PointDistanceResult<S> c = detail::solveExact(centre);
+    return detail::resultAt(q, detail::intoOctantOf(p_SQ, c.nearest_point), true, c.iterations);
+  }
   switch (options.method) {
     case DistanceMethod::kRadial:
       return detail::solveRadial(q);
@@ -108,6 +156,11 @@ PointDistanceResult<S> pointDistance(const Superellipsoid<S>& shape,
                                      const detail::NonDeduced<Vector3<S>>& p_WQ,
                                      const detail::NonDeduced<DistanceOptions<S>>& options) {
   validate(p_WQ, options);
+  if (!X_WS.matrix().allFinite() || !detail::withinCoordinateRange(X_WS.translation())) {
+    throwInvalid("the pose X_WS must be finite, its translation at most " +
+                     detail::formatValue(detail::maxCoordinate<S>()) + " in magnitude",
+                 X_WS.translation());
+  }
   const Vector3<S> p_SQ = X_WS.inverse(Eigen::Isometry) * p_WQ;
   PointDistanceResult<S> r = pointDistance<S>(shape, p_SQ, options);
   r.nearest_point = X_WS * r.nearest_point;

@@ -6,6 +6,8 @@
 // floored at the rounding level of the query).
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "fcl_superellipsoid/point_distance.h"
 #include "shape/octant.h"
@@ -24,6 +26,30 @@ struct Query {
   // the problem is convex and any converged start gives the one answer; ignored inside.
   const Vector3<S>* hint = nullptr;
 };
+
+/// True for a query point so far from the shape (beyond 2^digits × size along an axis) that the
+/// support point in its direction is the nearest point to rounding; every method answers it with
+/// solveFar. Squaring its coordinates could overflow, which solveFar never does.
+template <typename S>
+bool isFarQuery(const Superellipsoid<S>& shape, const Vector3<S>& p_SQ) {
+  return p_SQ.cwiseAbs().maxCoeff() > std::ldexp(shape.size(), std::numeric_limits<S>::digits);
+}
+
+/// True for a query point within 2^−digits × size of the centre along every axis (but not the
+/// centre itself): its direction is below the rounding of the shape's coordinates, and every
+/// method answers it with the centre's nearest point, reflected into its octant.
+template <typename S>
+bool isNearCentreQuery(const Superellipsoid<S>& shape, const Vector3<S>& p_SQ) {
+  const S largest = p_SQ.cwiseAbs().maxCoeff();
+  return largest > S(0) && largest < std::ldexp(shape.size(), -std::numeric_limits<S>::digits);
+}
+
+/// The answer for a far query (docs/math.md → "Points near the centre, points far away"): the
+/// support point N in the query's direction u, the normal u, the distance ‖Q − N‖; norms taken
+/// without overflow.
+template <typename S>
+PointDistanceResult<S> solveFar(const Superellipsoid<S>& shape, const Vector3<S>& p_SQ,
+                                S relative_tolerance);
 
 template <typename S>
 PointDistanceResult<S> solveRadial(const Query<S>& q);

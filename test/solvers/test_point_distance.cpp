@@ -335,40 +335,7 @@ TYPED_TEST(PointDistanceTest, RadialIsExactOnlyAlongNormalRays) {
   }
 }
 
-TYPED_TEST(PointDistanceTest, BadInputThrowsNamingTheValue) {
-  using S = TypeParam;
-  const Superellipsoid<S> shape{S(1), S(1), S(1), S(1), S(1)};
-  const S nan = std::numeric_limits<S>::quiet_NaN(), inf = std::numeric_limits<S>::infinity();
-  auto expectThrow = [&](const Vector3<S>& x, DistanceOptions<S> options, const std::string& what) {
-    try {
-      pointDistance(shape, x, options);
-      ADD_FAILURE() << "no exception for " << what;
-    } catch (const std::invalid_argument& e) {
-      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
-    }
-  };
-  for (auto method : {DistanceMethod::kExact, DistanceMethod::kPaper, DistanceMethod::kRadial}) {
-    const auto ok = DistanceOptions<S>::of(method);
-    expectThrow(Vector3<S>(nan, S(0), S(0)), ok, "got (nan, 0, 0)");
-    expectThrow(Vector3<S>(S(0), inf, S(0)), ok, "got (0, inf, 0)");
-    auto bad = ok;
-    bad.tolerance = S(0);
-    expectThrow(Vector3<S>::Ones(), bad, "options.tolerance must be finite and > 0, got 0");
-    bad.tolerance = -S(1e-3);
-    expectThrow(Vector3<S>::Ones(), bad, "got -0.001");
-    bad.tolerance = nan;
-    expectThrow(Vector3<S>::Ones(), bad, "got nan");
-    bad = ok;
-    bad.max_iterations = 0;
-    expectThrow(Vector3<S>::Ones(), bad, "options.max_iterations must be >= 1, got 0");
-    fcl::Transform3<S> pose = fcl::Transform3<S>::Identity();
-    try {
-      pointDistance(shape, pose, Vector3<S>(S(1), nan, S(0)), ok);
-      ADD_FAILURE() << "no exception for a NaN world point";
-    } catch (const std::invalid_argument&) {
-    }
-  }
-}
+// Bad input: test/bad_input/test_bad_input.cpp (the catalogue, docs/hardening.md).
 
 }  // namespace
 }  // namespace fcl_superellipsoid

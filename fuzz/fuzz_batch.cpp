@@ -1,0 +1,141 @@
+// Fuzz target 2: the batched queries (batchDistance, verticesWithinMargin) on random clouds:
+// sizes, poses, margins, warm starts, thread counts, SIMD or scalar. Every answer meets the
+// point-query contract (in the world frame), agrees with the single query for the same vertex,
+// and the contacts are exactly the vertices within the margin. docs/hardening.md → "Fuzzing".
+#include <optional>
+#include <vector>
+
+#include "fcl_superellipsoid/batch_distance.h"
+#include "fcl_superellipsoid/point_distance.h"
+#include "fuzz_input.h"
+#include "point_contract.h"
+
+namespace {
+
+using fcl_superellipsoid::BatchDistanceResult;
+using fcl_superellipsoid::BatchOptions;
+using fcl_superellipsoid::DistanceMethod;
+using fcl_superellipsoid::Matrix3X;
+using fcl_superellipsoid::Superellipsoid;
+using fuzz::Vector3;
+
+template <typename S>
+void run(FuzzedDataProvider& in) {
+  std::optional<Superellipsoid<S>> shape;
+  try {
+    shape.emplace(fuzz::aroundOne<S>(in, 8), fuzz::aroundOne<S>(in, 8), fuzz::aroundOne<S>(in, 8),
+                  fuzz::anyExponent<S>(in), fuzz::anyExponent<S>(in));
+  } catch (const std::invalid_argument& e) {
+    fuzz::requireNamedValue(e);
+    return;
+  }
+  const S size = shape->size();
+  const fcl::Transform3<S> X_WS = fuzz::makePose<S>(in, S(4) * size);
+  const fcl::Transform3<S> X_SW = X_WS.inverse(Eigen::Isometry);
+
+  // The cloud: around the shape, in the world frame.
+  // Mostly a few dozen vertices (one chunk); 1 in 8 inputs spans several chunks of 256.
+  const int n = in.ConsumeIntegralInRange<int>(0, 7) == 0 ? in.ConsumeIntegralInRange<int>(0, 600)
+                                                          : in.ConsumeIntegralInRange<int>(0, 40);
+  const S extent = size * std::ldexp(S(1), in.ConsumeIntegralInRange<int>(-4, 4));
+  Matrix3X<S> p_WV(3, n);
+  for (int i = 0; i < n; ++i) {
+    for (int c = 0; c < 3; ++c) p_WV(c, i) = extent * (S(1) - S(2) * in.ConsumeProbability<S>());
+    p_WV.col(i) = X_WS * Vector3<S>(p_WV.col(i));
+  }
+
+  BatchOptions<S> options;
+  const int method = in.ConsumeIntegralInRange<int>(0, 5);  // Exact most often
+  options.distance =
+      fcl_superellipsoid::DistanceOptions<S>::of(method == 0   ? DistanceMethod::kRadial
+                                                 : method == 1 ? DistanceMethod::kPaper
+                                                               : DistanceMethod::kExact);
+  if (in.ConsumeBool())
+    options.distance.tolerance = std::ldexp(S(1), -in.ConsumeIntegralInRange<int>(2, 50));
+  options.threads = in.ConsumeIntegralInRange<int>(0, 3);
+  options.min_parallel_vertices = in.ConsumeBool() ? 1 : 1024;
+  options.vectorize = in.ConsumeIntegralInRange<int>(0, 3) != 0;
+  Matrix3X<S> warm;
+  if (in.ConsumeBool()) {
+    warm.resize(3, n);
+    for (int i = 0; i < n; ++i) {
+      const int kind = in.ConsumeIntegralInRange<int>(0, 2);
+      const Vector3<S> guess(S(1) - S(2) * in.ConsumeProbability<S>(),
+                             S(1) - S(2) * in.ConsumeProbability<S>(),
+                             S(1) - S(2) * in.ConsumeProbability<S>());
+      warm.col(i) = kind == 0 ? Vector3<S>::Constant(std::numeric_limits<S>::quiet_NaN())
+                              : Vector3<S>(X_WS * (kind == 1 ? shape->supportPoint(guess)
+                                                             : Vector3<S>(size * guess)));
+    }
+    options.warm_start_W = &warm;
+  }
+
+  BatchDistanceResult<S> result;
+  fcl_superellipsoid::batchDistance(*shape, X_WS, p_WV, result, options);
+  const S eps = std::numeric_limits<S>::epsilon();
+  const bool simd = options.vectorize && options.distance.method == DistanceMethod::kExact;
+  const S reach = X_WS.translation().norm() + extent * S(2) + size;
+  const S abs_tol = options.distance.tolerance * size + S(64) * eps * reach;
+  for (int i = 0; i < n; ++i) {
+    const S d = result.distance[i];
+    const Vector3<S> N = result.nearest_point.col(i), normal = result.normal.col(i);
+    const auto single =
+        fcl_superellipsoid::pointDistance(*shape, X_WS, Vector3<S>(p_WV.col(i)), options.distance);
+    // (The single answer's nearest point and normal are printed in the world frame.)
+    const std::string what =
+        "vertex " + std::to_string(i) + ", batch distance " + std::to_string(d) + " (simd " +
+        std::to_string(simd) + "); single: " +
+        fuzz::describe(*shape, Vector3<S>(X_SW * p_WV.col(i)), options.distance, single);
+    fuzz::require(std::isfinite(d) && N.allFinite() && normal.allFinite(), "not finite: " + what);
+    fuzz::require(std::abs(normal.norm() - S(1)) <= S(64) * eps, "normal not unit: " + what);
+    // On the surface, up to the rounding of the pose: moving a point by δ moves the gauge by at
+    // most √3·δ/(smallest radius).
+    const S pose_rounding = S(16) * eps * reach * S(1.8) / shape->radii().minCoeff();
+    fuzz::require(std::abs(shape->gauge(X_SW * N) - S(1)) <=
+                      (sizeof(S) == 4 ? S(1e-3) : S(1e-8)) + pose_rounding,
+                  "nearest point not on the surface: " + what);
+    fuzz::require(std::abs((Vector3<S>(p_WV.col(i)) - N).norm() - std::abs(d)) <= S(4) * abs_tol,
+                  "|Q - N| != |distance|: " + what);
+    if (!simd && options.warm_start_W == nullptr) {
+      fuzz::require(d == single.distance && N == single.nearest_point,
+                    "scalar batch != single query: " + what);
+    } else if (fuzz::inFullAccuracyRange(*shape) && single.converged) {
+      fuzz::require(std::abs(d - single.distance) <= S(4) * abs_tol + S(4) * single.error,
+                    "batch disagrees with the single query: " + what);
+    }
+  }
+
+  // Within a margin: exactly the vertices whose distance is ≤ margin (up to the tolerance band).
+  const S margin = size * (S(0.5) - in.ConsumeProbability<S>());
+  std::vector<fcl_superellipsoid::VertexContact<S>> contacts;
+  if (in.ConsumeBool()) contacts.resize(7);  // a reused vector: its old contents must go
+  fcl_superellipsoid::verticesWithinMargin(*shape, X_WS, p_WV, margin, contacts, options);
+  std::vector<bool> listed(std::size_t(n), false);
+  Eigen::Index previous = -1;
+  for (const auto& c : contacts) {
+    fuzz::require(c.index > previous && c.index < n, "contacts out of order or range");
+    previous = c.index;
+    listed[std::size_t(c.index)] = true;
+    fuzz::require(c.distance <= margin, "contact beyond the margin");
+    // The scalar path is deterministic; SIMD lanes may settle differently within the tolerance.
+    if (!simd) {
+      fuzz::require(c.distance == result.distance[c.index],
+                    "contact distance != batchDistance's, vertex " + std::to_string(c.index));
+    } else if (fuzz::inFullAccuracyRange(*shape)) {
+      fuzz::require(
+          std::abs(c.distance - result.distance[c.index]) <= S(4) * abs_tol,
+          "contact distance disagrees with batchDistance, vertex " + std::to_string(c.index));
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    const S band = simd ? S(8) * abs_tol : S(0);
+    if (result.distance[i] <= margin - band && (!simd || fuzz::inFullAccuracyRange(*shape))) {
+      fuzz::require(listed[std::size_t(i)],
+                    "missed vertex " + std::to_string(i) + " within the margin");
+    }
+  }
+}
+
+}  // namespace
+
+FSE_FUZZ_FLOAT_AND_DOUBLE(run)

@@ -1,0 +1,29 @@
+#ifndef FCL_SUPERELLIPSOID_SRC_COMMON_COORDINATE_RANGE_H
+#define FCL_SUPERELLIPSOID_SRC_COMMON_COORDINATE_RANGE_H
+
+// Internal: the largest coordinate a query point, vertex or pose translation may have (docs/
+// hardening.md → "Numeric range"): a quarter of the largest finite value. A point of such
+// coordinates moved by such a translation still has a finite norm (at most √3/2 of the largest
+// value), so every distance the library returns is finite.
+
+#include <limits>
+
+namespace fcl_superellipsoid {
+namespace detail {
+
+template <typename S>
+constexpr S maxCoordinate() {
+  return std::numeric_limits<S>::max() / 4;
+}
+
+/// True if every coefficient of v is within ±maxCoordinate<S>() (false for NaN).
+template <typename Derived>
+bool withinCoordinateRange(const Derived& v) {
+  using S = typename Derived::Scalar;
+  return (v.array().abs() <= maxCoordinate<S>()).all();
+}
+
+}  // namespace detail
+}  // namespace fcl_superellipsoid
+
+#endif  // FCL_SUPERELLIPSOID_SRC_COMMON_COORDINATE_RANGE_H
