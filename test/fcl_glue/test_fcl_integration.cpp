@@ -256,6 +256,43 @@ TYPED_TEST(FclIntegrationTest, UnsupportedPairsAreRefused) {
   EXPECT_EQ(fcl::collide(&b, &a, &solver, fcl::CollisionRequest<S>(), cresult), 0u);
 }
 
+// Far apart, at the edge of the numeric range (docs/hardening.md → "Numeric range": coordinates
+// up to a quarter of the largest finite value; here an eighth, so that the partner's vertices
+// stay inside): a sphere, a point cloud and a triangle mesh, either order, through the front end
+// and FCL's call; the distance is the separation less the radii, to rounding.
+TYPED_TEST(FclIntegrationTest, FarApartObjects) {
+  using S = TypeParam;
+  const S far = std::numeric_limits<S>::max() / 8;
+  const auto shape = std::make_shared<Superellipsoid<S>>(S(1), S(0.5), S(0.5), S(0.6), S(0.9));
+  const auto sphere = std::make_shared<fcl::Sphere<S>>(S(0.5));
+  TriangleMesh<S> cloud;
+  cloud.vertices = {Vector3<S>(0, 0, 0), Vector3<S>(S(3), S(1), 0), Vector3<S>(0, S(2), S(1))};
+  const auto points = makeBVHModel<fcl::OBBRSS<S>>(cloud);
+  const auto mesh = makeBVHModel<fcl::RSS<S>>(tessellate(Superellipsoid<S>(1, 1, 1, 1, 1), 50));
+  const fcl::Transform3<S> X_far(fcl::Translation3<S>(far, 0, 0));
+  const fcl::CollisionObject<S> o_shape(shape), o_sphere(sphere, X_far), o_points(points, X_far),
+      o_mesh(mesh, X_far);
+  const S rounding = 16 * std::numeric_limits<S>::epsilon() * far;
+  fcl::detail::GJKSolver_libccd<S> solver;
+  for (const auto* other : {&o_sphere, &o_points, &o_mesh}) {
+    // (The mesh's nearest vertex is 1 from its centre: lost to rounding at this distance.)
+    const S expected = far - S(1) - (other == &o_sphere ? S(0.5) : S(0));
+    for (bool shape_first : {true, false}) {
+      const auto* o1 = shape_first ? &o_shape : other;
+      const auto* o2 = shape_first ? other : &o_shape;
+      fcl::DistanceResult<S> front, table;
+      const fcl::DistanceRequest<S> request(true, true);
+      EXPECT_NEAR(fcl_superellipsoid::distance(o1, o2, request, front), expected, rounding);
+      EXPECT_TRUE(front.nearest_points[0].allFinite() && front.nearest_points[1].allFinite());
+      fcl::distance(o1, o2, &solver, request, table);
+      EXPECT_NEAR(table.min_distance, expected, rounding);
+      fcl::CollisionResult<S> contacts;
+      EXPECT_EQ(fcl_superellipsoid::collide(o1, o2, fcl::CollisionRequest<S>(10, true), contacts),
+                0u);
+    }
+  }
+}
+
 // Debian's plain fcl::distance runs in libfcl with its private tables: a warning, no crash.
 TEST(FclIntegration, PlainFclCallWarnsWithoutCrashing) {
   const auto shape = std::make_shared<Superellipsoidd>(1, 1, 1, 1, 1);
