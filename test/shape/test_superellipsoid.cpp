@@ -257,6 +257,36 @@ TYPED_TEST(SuperellipsoidTest, SupportPointIsTheFarthestSurfacePointAlongTheDire
   }
 }
 
+// At both ends of the radius range, with direction components near the smallest normal value:
+// on the surface, and supporting: u·N is the unit shape's support value, scaled. (The point
+// itself may differ from the scaled unit one where a component times a radius underflows: on a
+// box-like face every point supports to rounding.) fuzz_point_query found a tiny box-like shape
+// whose support point left the surface: a product of the norm's powers underflowed
+// (docs/hardening.md → "Findings").
+TYPED_TEST(SuperellipsoidTest, SupportPointAtTheEndsOfTheRange) {
+  using S = TypeParam;
+  const S tiny = std::numeric_limits<S>::min() * S(1e9);  // 1e-299 in double, 1e-29 in float
+  // The fuzzer's shape (double): radius 4.14e-25, where a component times the radius is
+  // subnormal while the norm's power q stays normal.
+  const S fuzzed = std::is_same<S, double>::value ? S(4.1400713344256291e-25) : S(1);
+  for (S eps : {S(2.1994041161654495e-05), S(0.02), S(1), S(1.9)}) {
+    const Superellipsoid<S> unit(S(1), S(1), S(1), eps, eps);
+    for (S scale : {NumericRange<S>::kMinRadius, fuzzed, NumericRange<S>::kMaxRadius}) {
+      const Superellipsoid<S> shape(scale, scale, scale, eps, eps);
+      const S subnormal_product = S(4) * std::numeric_limits<S>::denorm_min() / scale;
+      for (const Vector3<S>& u :
+           {Vector3<S>(-tiny, -1, 0), Vector3<S>(tiny, tiny, 1),
+            Vector3<S>(S(0.3), S(-0.5), S(0.8)), Vector3<S>(-subnormal_product, -1, 0)}) {
+        const Vector3<S> n = shape.supportPoint(u);
+        SCOPED_TRACE(test::describe(shape));
+        EXPECT_NEAR(double(test::referenceGauge(shape, n)), 1.0, 4 * test::evalTolerance<S>());
+        const double h_unit = double(u.dot(unit.supportPoint(u)));
+        EXPECT_NEAR(double(u.dot(n / scale)), h_unit, 4 * test::evalTolerance<S>() * h_unit);
+      }
+    }
+  }
+}
+
 TYPED_TEST(SuperellipsoidTest, SupportPointOfTheZeroDirection) {
   using S = TypeParam;
   const Superellipsoid<S> shape{S(2), S(1), S(0.5), S(0.4), S(1.5)};
