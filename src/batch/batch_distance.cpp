@@ -149,13 +149,7 @@ class VertexSolver {
     if (options.threads < 0) {
       detail::throwInvalidArgument(function, "options.threads must be >= 0", options.threads);
     }
-    if (!X_WS.matrix().allFinite() || !detail::withinCoordinateRange(X_WS.translation())) {
-      detail::throwInvalidArgument(function,
-                                   "the pose X_WS must be finite, its translation at most " +
-                                       detail::formatValue(detail::maxCoordinate<S>()) +
-                                       " in magnitude",
-                                   X_WS.translation());
-    }
+    detail::checkPose(function, "X_WS", X_WS);
     checkVertices<S>(function, p_WV);
     if (options.warm_start_W != nullptr && options.warm_start_W->cols() != p_WV.cols()) {
       detail::throwInvalidArgument(function,
@@ -182,7 +176,7 @@ class VertexSolver {
       return;
     }
     ChunkLanes<S> lanes;
-    std::size_t far = 0;  // solved by the scalar path
+    std::size_t own_answer = 0;  // far or near-centre vertices: the scalar path
     std::array<Eigen::Index, kChunk> vertex;
     std::array<Vector3<S>, kChunk> p_SV;
     for (Eigen::Index i = first; i < last; ++i) {
@@ -193,7 +187,7 @@ class VertexSolver {
       // lose their direction: both have their own answer in the scalar path.
       if (detail::isFarQuery(shape_, p_SV[k]) || detail::isNearCentreQuery(shape_, p_SV[k])) {
         emit(i, solve(i, p_SV[k]));
-        ++far;
+        ++own_answer;
         continue;
       }
       vertex[k] = i;
@@ -204,8 +198,8 @@ class VertexSolver {
       }
       ++lanes.count;
     }
-    const std::size_t culled = std::size_t(last - first) - lanes.count - far;
-    if (lanes.count == 0) return count(culled, 0, far);
+    const std::size_t culled = std::size_t(last - first) - lanes.count - own_answer;
+    if (lanes.count == 0) return count(culled, 0, own_answer);
     const bool with_hints = options_.warm_start_W != nullptr;
     lanes.pad(with_hints);
     detail::solveLanes(problem_, lanes.arrays(with_hints), lanes.count, false);
@@ -247,7 +241,7 @@ class VertexSolver {
       r.normal = X_WS_.linear() * r.normal;
       emit(vertex[k], r);
     }
-    count(culled, lanes.count - handed_back, handed_back + far);
+    count(culled, lanes.count - handed_back, handed_back + own_answer);
   }
 
   /// Writes the counts of all chunks to BatchOptions::statistics, if set.

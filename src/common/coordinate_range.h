@@ -6,7 +6,11 @@
 // coordinates moved by such a translation still has a finite norm (at most √3/2 of the largest
 // value), so every distance the library returns is finite.
 
+#include <Eigen/Geometry>
 #include <limits>
+#include <string>
+
+#include "common/invalid_argument.h"
 
 namespace fcl_superellipsoid {
 namespace detail {
@@ -21,6 +25,20 @@ template <typename Derived>
 bool withinCoordinateRange(const Derived& v) {
   using S = typename Derived::Scalar;
   return (v.array().abs() <= maxCoordinate<S>()).all();
+}
+
+/// Refuses a pose that is not finite or whose translation is beyond maxCoordinate():
+/// "<where>: the pose <name> must be finite, its translation at most ..., got (x, y, z)".
+template <typename S>
+void checkPose(const std::string& where, const char* name,
+               const Eigen::Transform<S, 3, Eigen::Isometry>& pose) {
+  if (!pose.matrix().allFinite() || !withinCoordinateRange(pose.translation())) {
+    throwInvalidArgument(where,
+                         std::string("the pose ") + name +
+                             " must be finite, its translation at most " +
+                             formatValue(maxCoordinate<S>()) + " in magnitude",
+                         pose.translation());
+  }
 }
 
 }  // namespace detail

@@ -156,11 +156,7 @@ PointDistanceResult<S> pointDistance(const Superellipsoid<S>& shape,
                                      const detail::NonDeduced<Vector3<S>>& p_WQ,
                                      const detail::NonDeduced<DistanceOptions<S>>& options) {
   validate(p_WQ, options);
-  if (!X_WS.matrix().allFinite() || !detail::withinCoordinateRange(X_WS.translation())) {
-    throwInvalid("the pose X_WS must be finite, its translation at most " +
-                     detail::formatValue(detail::maxCoordinate<S>()) + " in magnitude",
-                 X_WS.translation());
-  }
+  detail::checkPose("pointDistance", "X_WS", X_WS);
   const Vector3<S> p_SQ = X_WS.inverse(Eigen::Isometry) * p_WQ;
   PointDistanceResult<S> r = pointDistance<S>(shape, p_SQ, options);
   r.nearest_point = X_WS * r.nearest_point;

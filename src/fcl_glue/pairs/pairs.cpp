@@ -7,7 +7,7 @@
 #include <iostream>
 #include <limits>
 
-#include "common/invalid_argument.h"
+#include "common/coordinate_range.h"
 #include "fcl_glue/pairs/mesh_pair.h"
 #include "fcl_glue/pairs/pair.h"
 #include "fcl_glue/pairs/sphere_pair.h"
@@ -19,17 +19,6 @@ namespace {
 void warnUnsupported(const char* what, int node_type1, int node_type2) {
   std::cerr << "Warning: " << what << " function between node type " << node_type1
             << " and node type " << node_type2 << " is not supported\n";
-}
-
-/// Refuses a pose that is not finite (FCL's own arithmetic would carry the NaN into the result).
-template <typename S>
-void checkPoses(const char* where, const fcl::Transform3<S>& tf1, const fcl::Transform3<S>& tf2) {
-  if (!tf1.matrix().allFinite()) {
-    throwInvalidArgument(where, "the pose of o1 must be finite, translation", tf1.translation());
-  }
-  if (!tf2.matrix().allFinite()) {
-    throwInvalidArgument(where, "the pose of o2 must be finite, translation", tf2.translation());
-  }
 }
 
 }  // namespace
@@ -45,7 +34,8 @@ template <typename S>
 S pairDistance(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1,
                const fcl::CollisionGeometry<S>* o2, const fcl::Transform3<S>& tf2,
                const fcl::DistanceRequest<S>& request, fcl::DistanceResult<S>& result) {
-  checkPoses("superellipsoid distance", tf1, tf2);
+  checkPose("superellipsoid distance", "of o1", tf1);
+  checkPose("superellipsoid distance", "of o2", tf2);
   const Pair<S> pair = makePair(o1, tf1, o2, tf2);
   if (pair.shape != nullptr) {
     for (auto kind : {&sphereDistance<S>, &meshDistance<S>}) {
@@ -60,7 +50,8 @@ template <typename S>
 std::size_t pairCollide(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1,
                         const fcl::CollisionGeometry<S>* o2, const fcl::Transform3<S>& tf2,
                         const fcl::CollisionRequest<S>& request, fcl::CollisionResult<S>& result) {
-  checkPoses("superellipsoid collide", tf1, tf2);
+  checkPose("superellipsoid collide", "of o1", tf1);
+  checkPose("superellipsoid collide", "of o2", tf2);
   const Pair<S> pair = makePair(o1, tf1, o2, tf2);
   if (pair.shape != nullptr) {
     if (request.num_max_contacts <= result.numContacts()) return result.numContacts();
