@@ -10,7 +10,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "progress.h"
+#include "progress_bar.h"
 
 namespace fcl_superellipsoid {
 namespace bench {
@@ -111,8 +111,8 @@ std::vector<Row> runAccuracyTime(const RunConfig& config) {
         std::to_string(config.reference_points) + ")");
   }
   const std::vector<const BenchShape*> shapes = selectShapes(config.shapes);
-  ProgressBar progress(long(shapes.size() * config.sides.size()) * (config.repetitions + 1),
-                       config.progress);
+  support::ProgressBar progress(
+      long(shapes.size() * config.sides.size()) * (config.repetitions + 1), config.progress);
   std::vector<Row> rows;
   double sink = 0;
   for (std::size_t si = 0; si < shapes.size(); ++si) {

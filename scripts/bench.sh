@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, runs the benchmark, plots it and writes its results page.
 #   scripts/bench.sh            the quick mode (seconds after the build): out/ (CSV, JSON, PNG plots)
-#                               and out/benchmark.md
+#                               and out/benchmark.md; then the cloth scene's quick variant
+#                               (scripts/scenes.sh: out/scenes/)
 #   scripts/bench.sh --full     everything (about 20 minutes on 2 cores): fse_bench's full run, the
 #                               micro-benchmarks, the culling study and the aspect sweep; writes
 #                               docs/benchmark.md, docs/bench/*.png and the README's headline block
@@ -30,3 +31,4 @@ case " $* " in
   *" --out "*) ;;  # plot and document your directory with bench/plot.py and bench/benchmark_doc.py
   *) /usr/bin/python3 bench/plot.py out && /usr/bin/python3 bench/benchmark_doc.py out ;;
 esac
+if [ $# -eq 1 ] && [ "$1" = "--quick" ]; then scripts/scenes.sh; fi

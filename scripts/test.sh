@@ -5,7 +5,8 @@
 #                                the packaging tests, and a smoke run of each fuzz target
 #   scripts/test.sh --tsan       gcc, ThreadSanitizer, in build-tsan/: the tests of what threads
 #                                share (thread safety, batched queries, the lazily computed rolling
-#                                radius, the FCL traversal that calls the batched queries)
+#                                radius, the FCL traversal that calls the batched queries, the
+#                                cloth scene on 1 and 2 threads)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=build
@@ -22,7 +23,7 @@ case "${1:-}" in
   --tsan)
     build=build-tsan
     flags=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DFSE_SANITIZE_THREAD=ON -DFSE_BUILD_BENCH=OFF)
-    tests=(-R "ThreadSafety|BatchDistance|RollingRadiusIsComputedOnce|FclIntegration") ;;
+    tests=(-R "ThreadSafety|BatchDistance|RollingRadiusIsComputedOnce|FclIntegration|SameResultsForOneAndTwoThreads") ;;
   "") ;;
   *) echo "usage: scripts/test.sh [--sanitize | --tsan]" >&2; exit 2 ;;
 esac

@@ -1,8 +1,9 @@
-#ifndef FCL_SUPERELLIPSOID_BENCH_PROGRESS_H
-#define FCL_SUPERELLIPSOID_BENCH_PROGRESS_H
+#ifndef FCL_SUPERELLIPSOID_SUPPORT_PROGRESS_BAR_H
+#define FCL_SUPERELLIPSOID_SUPPORT_PROGRESS_BAR_H
 
-// A one-line progress bar on stderr, drawn only when stderr is a terminal (logs and CI
-// stay clean). Debian packages no C++ progress-bar library; this is the 30 lines it takes.
+// A one-line progress bar on stderr for the benchmark and the scene runner, drawn only when
+// stderr is a terminal (logs and CI stay clean). Debian packages no C++ progress-bar library; this
+// is the 30 lines it takes.
 
 #include <unistd.h>
 
@@ -12,7 +13,7 @@
 #include <string>
 
 namespace fcl_superellipsoid {
-namespace bench {
+namespace support {
 
 class ProgressBar {
  public:
@@ -45,7 +46,7 @@ class ProgressBar {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
-}  // namespace bench
+}  // namespace support
 }  // namespace fcl_superellipsoid
 
-#endif  // FCL_SUPERELLIPSOID_BENCH_PROGRESS_H
+#endif  // FCL_SUPERELLIPSOID_SUPPORT_PROGRESS_BAR_H

@@ -1,0 +1,231 @@
+// fse_sim: runs a scene file (docs/scenes.md). For each contact model asked for, and for the
+// Bullet peer, it steps the scene, times every phase, measures penetration and contact error
+// against the exact surfaces, and writes the results under --out:
+//   OUT/run.json                 the scene, the machine, every run's summary
+//   OUT/<model>/steps.csv        one row per step
+//   OUT/<model>/frames/*.obj     the cloth at the snapshot times; OUT/shapes.obj the shapes
+// A scene with a mistake is refused (exit 2) before anything is written.
+
+#include <fcl_superellipsoid/batch_distance.h>
+#include <fcl_superellipsoid/tessellation.h>
+#include <sys/utsname.h>
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <thread>
+
+#include "peer/bullet_cloth.h"
+#include "physics/cloth_simulation.h"
+#include "progress_bar.h"
+#include "report/measurements.h"
+#include "report/run_output.h"
+#include "scene/scene_loader.h"
+
+namespace fs = std::filesystem;
+namespace fse = fcl_superellipsoid;
+using namespace fse_sim;
+
+namespace {
+
+struct Options {
+  std::string scene_path;
+  std::vector<std::string> models{"exact"};
+  bool peer = false;
+  int mesh_vertices = 702;
+  int threads = 0;
+  std::string out = "out/scene";
+  std::vector<double> snapshots;
+  double duration = 0;  // 0: the scene's
+};
+
+std::string frameName(double t) {
+  char name[32];
+  std::snprintf(name, sizeof name, "cloth_%07.3f.obj", t);
+  return name;
+}
+
+/// Indices of the steps whose end is the first at or after each snapshot time.
+std::vector<long> snapshotSteps(const std::vector<double>& times, const Scene& scene) {
+  std::vector<long> steps;
+  for (double t : times) steps.push_back(long(std::ceil(t / scene.time.step - 1e-9)));
+  return steps;
+}
+
+void writeShapes(const Scene& scene, const std::string& path) {
+  std::ofstream out(path);
+  out.precision(9);
+  int offset = 1;
+  for (const ShapeSpec& spec : scene.shapes) {
+    const fse::TriangleMesh<double> mesh = fse::tessellate(makeShape(spec), 702);
+    const Eigen::Isometry3d pose = shapePose(spec);
+    for (const auto& v : mesh.vertices) {
+      const Eigen::Vector3d w = pose * v;
+      out << "v " << w[0] << ' ' << w[1] << ' ' << w[2] << '\n';
+    }
+    for (const auto& t : mesh.triangles) {
+      out << "f " << t[0] + offset << ' ' << t[1] + offset << ' ' << t[2] + offset << '\n';
+    }
+    offset += int(mesh.vertices.size());
+  }
+  if (!out) throw std::runtime_error(path + ": cannot be written");
+}
+
+RunSummary runModel(const Scene& scene, ContactModel model, const Options& options, long steps,
+                    const fs::path& dir, fse::support::ProgressBar& progress) {
+  ContactOptions contact;
+  contact.model = model;
+  contact.mesh_vertices = options.mesh_vertices;
+  contact.threads = options.threads;
+  ClothSimulation sim(scene, contact);
+  const Measurer measurer(scene);
+  fs::create_directories(dir / "frames");
+  const std::vector<long> snapshot = snapshotSteps(options.snapshots, scene);
+  std::vector<StepRecord> records;
+  records.reserve(std::size_t(steps));
+  if (std::count(snapshot.begin(), snapshot.end(), 0L)) {
+    writeClothObj((dir / "frames" / frameName(0)).string(), sim.mesh(), sim.positions());
+  }
+  for (long s = 1; s <= steps; ++s) {
+    sim.step();
+    records.push_back(measurer.measure(sim));
+    if (std::count(snapshot.begin(), snapshot.end(), s)) {
+      writeClothObj((dir / "frames" / frameName(sim.time())).string(), sim.mesh(), sim.positions());
+    }
+    progress.advance(1, std::string(toString(model)) + ", t = " + std::to_string(sim.time()));
+  }
+  writeStepsCsv((dir / "steps.csv").string(), sim.phases(), records);
+  return summarize(toString(model), sim.phases(), records);
+}
+
+RunSummary runPeer(const Scene& scene, const Options& options, long steps, const fs::path& dir,
+                   fse::support::ProgressBar& progress) {
+  BulletCloth peer(scene);
+  const Measurer measurer(scene);
+  const ClothMesh mesh = makeClothMesh(scene.cloth);
+  fs::create_directories(dir / "frames");
+  const std::vector<long> snapshot = snapshotSteps(options.snapshots, scene);
+  std::vector<StepRecord> records;
+  for (long s = 1; s <= steps; ++s) {
+    StepRecord r;
+    r.seconds[int(Phase::kTotal)] = peer.step();
+    r.time = scene.time.step * double(s);
+    const Eigen::Matrix3Xd x = peer.positions();
+    r.max_penetration = measurer.maxPenetration(x);
+    records.push_back(r);
+    if (std::count(snapshot.begin(), snapshot.end(), s)) {
+      writeClothObj((dir / "frames" / frameName(r.time)).string(), mesh, x);
+    }
+    progress.advance(1, "bullet, t = " + std::to_string(r.time));
+  }
+  writeStepsCsv((dir / "steps.csv").string(), {Phase::kTotal}, records);
+  return summarize("bullet", {Phase::kTotal}, records);
+}
+
+std::string machine() {
+  utsname u{};
+  uname(&u);
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line, model = u.machine;
+  while (std::getline(cpuinfo, line)) {
+    if (line.rfind("model name", 0) == 0) {
+      model = line.substr(line.find(':') + 2);
+      break;
+    }
+  }
+  return model + ", " + std::to_string(std::thread::hardware_concurrency()) + " hardware threads";
+}
+
+nlohmann::json sceneJson(const Scene& scene) {
+  nlohmann::json effects = nlohmann::json::array();
+  for (Effect e : scene.effects) effects.push_back(toString(e));
+  const ClothMesh mesh = makeClothMesh(scene.cloth);
+  return {{"name", scene.name},
+          {"effects", effects},
+          {"step", scene.time.step},
+          {"substeps", scene.time.substeps},
+          {"duration", scene.time.duration},
+          {"vertices", mesh.vertexCount()},
+          {"triangles", mesh.triangles.size()},
+          {"tolerance", scene.collision ? scene.collision->tolerance : 0.0}};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  CLI::App app{"fse_sim: runs a scene file (JSON) and writes its timings and measurements"};
+  app.add_option("scene", options.scene_path, "scene file (sim/scenes/*.json)")->required();
+  app.add_option("--contact", options.models, "contact models to run, in order: exact paper mesh")
+      ->check(CLI::IsMember({"exact", "paper", "mesh"}))
+      ->expected(1, 3);
+  app.add_flag("--peer", options.peer, "also run Bullet's soft-body cloth (the peer)");
+  app.add_option("--mesh-vertices", options.mesh_vertices,
+                 "mesh model: vertices of the tessellation")
+      ->check(CLI::Range(5, 1000000));
+  app.add_option("--threads", options.threads, "threads of the library's batched queries (0: all)")
+      ->check(CLI::Range(0, 1024));
+  app.add_option("--out", options.out, "output directory (replaced)");
+  app.add_option("--snapshots", options.snapshots, "times (s) at which to write the cloth as OBJ")
+      ->check(CLI::Range(0.0, 1e6));
+  app.add_option("--duration", options.duration, "simulate this long instead (s)")
+      ->check(CLI::PositiveNumber);
+  CLI11_PARSE(app, argc, argv);
+
+  Scene scene;
+  try {
+    scene = loadScene(options.scene_path);
+    if (options.duration > 0) {
+      requireRange(options.duration >= scene.time.step, "--duration",
+                   "at least one step (" + std::to_string(scene.time.step) + " s)",
+                   options.duration);
+      scene.time.duration = options.duration;
+    }
+  } catch (const SceneError& e) {
+    std::cerr << "fse_sim: error: " << e.what() << '\n';
+    return 2;
+  }
+  try {
+    const long steps = std::lround(scene.time.duration / scene.time.step);
+    const fs::path out = options.out;
+    // Replace only what an earlier run wrote: never a folder of something else.
+    if (fs::exists(out) && !fs::is_empty(out) && !fs::exists(out / "run.json")) {
+      std::cerr << "fse_sim: error: --out " << out.string()
+                << ": exists and is not an fse_sim output folder (no run.json); not replacing it\n";
+      return 2;
+    }
+    fs::remove_all(out);
+    fs::create_directories(out);
+    if (!scene.shapes.empty()) writeShapes(scene, (out / "shapes.obj").string());
+    const long runs = long(options.models.size()) + (options.peer ? 1 : 0);
+    fse::support::ProgressBar progress(runs * steps, true);
+    nlohmann::json summaries = nlohmann::json::array();
+    std::vector<RunSummary> results;
+    for (const std::string& name : options.models) {
+      results.push_back(
+          runModel(scene, *contactModelNamed(name), options, steps, out / name, progress));
+    }
+    if (options.peer) results.push_back(runPeer(scene, options, steps, out / "bullet", progress));
+    progress.finish();
+    for (const RunSummary& s : results) summaries.push_back(toJson(s));
+    writeJson((out / "run.json").string(), {{"scene", sceneJson(scene)},
+                                            {"machine", machine()},
+                                            {"simd", fse::simdInstructionSet()},
+                                            {"threads", options.threads},
+                                            {"runs", summaries}});
+    // A short table on stdout: mean ms per phase, and penetration.
+    std::printf("%-8s %10s %10s %12s %12s\n", "model", "total ms", "coll. ms", "max pen. m",
+                "contact err");
+    for (const RunSummary& s : results) {
+      std::printf("%-8s %10.3f %10.3f %12.3e %12.3e\n", s.model.c_str(),
+                  s.mean_ms[int(Phase::kTotal)], s.mean_ms[int(Phase::kCollisionDetection)],
+                  s.max_penetration, s.contact_error_max);
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "fse_sim: error: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,119 @@
+#include "physics/cloth_simulation.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fse_sim {
+
+ClothSimulation::ClothSimulation(const Scene& scene, const ContactOptions& contact_options)
+    : scene_(scene),
+      mesh_(makeClothMesh(scene.cloth)),
+      x_(mesh_.rest_positions),
+      v_(3, mesh_.vertexCount()),
+      x_start_(x_),
+      w_(mesh_.vertexCount()),
+      vertex_mass_(scene.cloth.mass / mesh_.vertexCount()),
+      edges_(mesh_.edges, mesh_.rest_positions, 0) {
+  v_.colwise() = scene.cloth.velocity;
+  w_.setConstant(1 / vertex_mass_);
+  if (scene.gravity) gravity_ = scene.gravity->acceleration;
+  if (scene.stretch) stretch_.emplace(mesh_.edges, mesh_.rest_positions, scene.stretch->compliance);
+  if (scene.bending) {
+    bending_.emplace(mesh_.bending_pairs, mesh_.rest_positions, scene.bending->compliance);
+  }
+  if (scene.pinning) {
+    for (int vertex : scene.pinning->fixed) {
+      w_[vertex] = 0;
+      v_.col(vertex).setZero();
+    }
+    attachments_ = scene.pinning->attached;
+  }
+  if (scene.collision) contacts_ = std::make_unique<Contacts>(scene, contact_options);
+  if (scene.damping) damping_ = scene.damping->linear;
+  position_pass_ = stretch_ || bending_ || !attachments_.empty();
+  velocity_pass_ = scene.friction || scene.damping;
+
+  phases_.push_back(Phase::kIntegration);
+  if (position_pass_) phases_.push_back(Phase::kPositionConstraints);
+  if (contacts_) phases_.push_back(Phase::kContactConstraints);
+  phases_.push_back(Phase::kVelocityUpdate);
+  if (velocity_pass_) phases_.push_back(Phase::kVelocityConstraints);
+  if (contacts_) phases_.push_back(Phase::kCollisionDetection);
+  phases_.push_back(Phase::kTotal);
+}
+
+void ClothSimulation::step() {
+  times_.fill(0);
+  {
+    ScopedPhase total(times_, Phase::kTotal);
+    const double h = scene_.time.step;
+    if (contacts_) {
+      ScopedPhase timer(times_, Phase::kCollisionDetection);
+      double max_speed2 = 0;
+      for (Eigen::Index i = 0; i < v_.cols(); ++i) {
+        max_speed2 = std::max(max_speed2, v_.col(i).squaredNorm());
+      }
+      contacts_->detect(x_, std::sqrt(max_speed2), gravity_.norm(), h);
+    }
+    const int n = scene_.time.substeps;
+    for (int s = 0; s < n; ++s) substep(h / n);
+  }
+  time_ = scene_.time.step * double(++steps_);
+}
+
+void ClothSimulation::substep(double h) {
+  const Eigen::Index n = x_.cols();
+  {
+    ScopedPhase timer(times_, Phase::kIntegration);
+    x_start_ = x_;
+    if (scene_.gravity) {
+      const Eigen::Vector3d dv = h * gravity_;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        if (w_[i] > 0) v_.col(i) += dv;
+      }
+    }
+    x_ += h * v_;  // fixed vertices have v = 0
+  }
+  if (position_pass_) {
+    ScopedPhase timer(times_, Phase::kPositionConstraints);
+    if (stretch_) stretch_->project(x_, w_, h);
+    if (bending_) bending_->project(x_, w_, h);
+    for (const AttachmentSpec& a : attachments_) {
+      // C = |x − target| toward 0: a zero-length spring of compliance α to a fixed point.
+      const double wi = w_[a.vertex];
+      if (wi <= 0) continue;
+      const double alpha_tilde = a.compliance / (h * h);
+      x_.col(a.vertex) += (a.target - x_.col(a.vertex)) * (wi / (wi + alpha_tilde));
+    }
+  }
+  if (contacts_) {
+    ScopedPhase timer(times_, Phase::kContactConstraints);
+    contacts_->project(x_, x_start_, w_);
+  }
+  {
+    ScopedPhase timer(times_, Phase::kVelocityUpdate);
+    v_ = (x_ - x_start_) / h;
+  }
+  if (velocity_pass_) {
+    ScopedPhase timer(times_, Phase::kVelocityConstraints);
+    if (contacts_) contacts_->applyFriction(v_, h);
+    if (damping_ > 0) v_ *= std::exp(-damping_ * h);
+  }
+}
+
+double ClothSimulation::maxEdgeStrain() const { return edges_.maxStrain(x_); }
+
+double ClothSimulation::energy() const {
+  double kinetic = 0, potential = 0;
+  for (Eigen::Index i = 0; i < x_.cols(); ++i) {
+    if (w_[i] <= 0) continue;
+    kinetic += 0.5 * vertex_mass_ * v_.col(i).squaredNorm();
+    potential -= vertex_mass_ * gravity_.dot(x_.col(i));
+  }
+  double elastic = 0;
+  if (stretch_) elastic += stretch_->energy(x_);
+  if (bending_) elastic += bending_->energy(x_);
+  return kinetic + potential + elastic;
+}
+
+}  // namespace fse_sim

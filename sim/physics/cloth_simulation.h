@@ -1,0 +1,73 @@
+#ifndef FSE_SIM_PHYSICS_CLOTH_SIMULATION_H
+#define FSE_SIM_PHYSICS_CLOTH_SIMULATION_H
+
+// A cloth scene stepped with XPBD and substeps (docs/scenes.md → "The step"). Only the
+// effects the scene declares are constructed; a step runs only their code, and the phases
+// they own (phases.h) exist only when one of them is declared.
+
+#include <Eigen/Core>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "contact/contact_model.h"
+#include "physics/cloth_mesh.h"
+#include "physics/contacts.h"
+#include "physics/distance_constraints.h"
+#include "physics/phases.h"
+#include "scene/scene.h"
+
+namespace fse_sim {
+
+class ClothSimulation {
+ public:
+  ClothSimulation(const Scene& scene, const ContactOptions& contact_options = {});
+
+  /// Advances by one step (Scene::time.step).
+  void step();
+
+  double time() const { return time_; }
+  long stepCount() const { return steps_; }
+  const Scene& scene() const { return scene_; }
+  const ClothMesh& mesh() const { return mesh_; }
+  const Eigen::Matrix3Xd& positions() const { return x_; }
+  const Eigen::Matrix3Xd& velocities() const { return v_; }
+  const Eigen::VectorXd& inverseMasses() const { return w_; }
+  double vertexMass() const { return vertex_mass_; }
+
+  /// The phases this scene runs, in the paper's order; the others cost nothing.
+  const std::vector<Phase>& phases() const { return phases_; }
+  /// Time per phase of the last step (0 for phases not run).
+  const PhaseTimes& lastStepTimes() const { return times_; }
+  /// The contacts (nullptr without `collision`).
+  const Contacts* contacts() const { return contacts_.get(); }
+
+  /// Largest edge strain |L/L0 − 1| over the cloth's edges (with or without `stretch`).
+  double maxEdgeStrain() const;
+  /// Kinetic + gravitational potential (+ elastic, for compliant constraints) energy, J.
+  double energy() const;
+
+ private:
+  void substep(double h);
+
+  Scene scene_;
+  ClothMesh mesh_;
+  Eigen::Matrix3Xd x_, v_, x_start_;
+  Eigen::VectorXd w_;  ///< inverse masses (0: fixed)
+  double vertex_mass_;
+  Eigen::Vector3d gravity_ = Eigen::Vector3d::Zero();
+  std::optional<DistanceConstraints> stretch_, bending_;
+  std::vector<AttachmentSpec> attachments_;
+  std::unique_ptr<Contacts> contacts_;
+  double damping_ = 0;
+  bool velocity_pass_ = false, position_pass_ = false;
+  DistanceConstraints edges_;  ///< every edge, for measuring strain only
+  std::vector<Phase> phases_;
+  PhaseTimes times_{};
+  double time_ = 0;
+  long steps_ = 0;
+};
+
+}  // namespace fse_sim
+
+#endif  // FSE_SIM_PHYSICS_CLOTH_SIMULATION_H

@@ -1,0 +1,27 @@
+#ifndef FSE_SIM_SCENE_SCENE_LOADER_H
+#define FSE_SIM_SCENE_SCENE_LOADER_H
+
+// Scene files: JSON, read strictly (the format, key by key: docs/scenes.md → "Scene files").
+// Every mistake is refused with a SceneError that names where it is: line and column for
+// JSON that does not parse, the JSON Pointer of the value otherwise.
+
+#include <string>
+
+#include "scene/json_reader.h"
+#include "scene/scene.h"
+
+namespace fse_sim {
+
+/// Largest cloth the runner accepts (vertices); beyond it a scene is refused, not attempted.
+constexpr long kMaxClothVertices = 10000000;
+
+/// Parses scene text. `source` names it in messages (a file name).
+/// @throws SceneError for invalid JSON or an invalid scene.
+Scene parseScene(const std::string& text, const std::string& source);
+
+/// Reads and parses a scene file. @throws SceneError also if the file cannot be read.
+Scene loadScene(const std::string& path);
+
+}  // namespace fse_sim
+
+#endif  // FSE_SIM_SCENE_SCENE_LOADER_H

@@ -1,0 +1,274 @@
+#!/usr/bin/python3
+"""Tables, plots and pictures of fse_sim runs:
+    /usr/bin/python3 sim/scene_report.py RUN_DIR... [--docs DOCS] [--readme README]
+
+Each RUN_DIR is an fse_sim --out directory (run.json, <model>/steps.csv, <model>/frames/*.obj,
+shapes.obj). Writes, into DOCS/scenes/ (default: each RUN_DIR itself):
+  step_time_<scene>.png    time per step over simulated time, every model and the peer
+                           (the paper's Figure 11)
+  penetration_<scene>.png  deepest vertex inside the shape over time, with the tolerance
+  cloth_<scene>.png        the cloth on the shape at the snapshot times (exact model)
+With --docs, also rewrites the results block of DOCS/scenes.md, and with --readme the
+README's scenes block (between `<!-- scenes:begin -->` and `<!-- scenes:end -->`).
+Needs Debian's python3-matplotlib.
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
+
+# The paper's Tables 5 and 6 (ms per step, its case-study machine).
+PAPER = {
+    3240: {"integration": 0.025, "position_constraints": 2.423, "velocity_constraints": 0.914,
+           "collision_detection": 4.170, "velocity_update": 1.540, "total": 9.170},
+    6460: {"integration": 0.066, "position_constraints": 5.324, "velocity_constraints": 1.544,
+           "collision_detection": 7.509, "velocity_update": 1.599, "total": 16.231},
+}
+PHASES = [("integration", "time integration"), ("position_constraints", "position constraints"),
+          ("contact_constraints", "contact constraints (ours)"),
+          ("velocity_constraints", "velocity constraints"),
+          ("collision_detection", "collision detection"), ("velocity_update", "velocity update"),
+          ("total", "total")]
+STYLE = {"exact": "tab:green", "paper": "tab:orange", "mesh": "tab:blue", "bullet": "tab:brown"}
+LABEL = {"exact": "ours, Exact", "paper": "ours, paper's method", "mesh": "ours, FCL mesh",
+         "bullet": "Bullet soft body"}
+
+
+def read_steps(path):
+    with open(path) as f:
+        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+
+
+def read_obj(path):
+    vertices, faces = [], []
+    with open(path) as f:
+        for line in f:
+            parts = line.split()
+            if not parts:
+                continue
+            if parts[0] == "v":
+                vertices.append(tuple(float(x) for x in parts[1:4]))
+            elif parts[0] == "f":
+                faces.append(tuple(int(x.split("/")[0]) - 1 for x in parts[1:4]))
+    return vertices, faces
+
+
+def fmt(x, digits=3):
+    if x is None or (isinstance(x, float) and math.isnan(x)):
+        return ""
+    if x == 0:
+        return "0"
+    if abs(x) < 1e-3 or abs(x) >= 1e4:
+        return f"{x:.1e}"
+    return f"{x:.{digits}f}"
+
+
+def plot_series(run_dir, run, column, ylabel, path, log=False, tolerance=None):
+    fig, ax = plt.subplots(figsize=(8, 4.2))
+    for summary in run["runs"]:
+        model = summary["model"]
+        steps = read_steps(os.path.join(run_dir, model, "steps.csv"))
+        ax.plot([s["time"] for s in steps], [max(s[column], 1e-18) if log else s[column] for s in steps],
+                color=STYLE.get(model), label=LABEL.get(model, model), linewidth=0.9)
+    if tolerance:
+        ax.axhline(tolerance, color="black", linestyle="--", linewidth=0.8, label="collision tolerance")
+    if log:
+        ax.set_yscale("log")
+    ax.set_xlabel("simulated time (s)")
+    ax.set_ylabel(ylabel)
+    ax.set_title(f"{run['scene']['name']}: {run['scene']['vertices']} vertices")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def shaded(polys, base):
+    """Flat shading: each face's colour scaled by |n·l| (two-sided) for a light from above-front."""
+    light = (0.3, -0.5, 0.81)
+    out = []
+    for poly, colour in zip(polys, base):
+        a, b, c = poly[0], poly[1], poly[2]
+        u = [b[k] - a[k] for k in range(3)]
+        v = [c[k] - a[k] for k in range(3)]
+        n = (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
+        norm = math.sqrt(sum(x * x for x in n)) or 1.0
+        k = 0.35 + 0.65 * abs(sum(n[i] * light[i] for i in range(3))) / norm
+        out.append(tuple(min(1.0, ch * k) for ch in colour))
+    return out
+
+
+def plot_pictures(run_dir, run, path, model="exact"):
+    frames_dir = os.path.join(run_dir, model, "frames")
+    if not os.path.isdir(frames_dir):
+        return False
+    frames = sorted(os.listdir(frames_dir))
+    if not frames:
+        return False
+    shape_v, shape_f = read_obj(os.path.join(run_dir, "shapes.obj"))
+    # Drawn 2 % smaller about its centroid: the cloth rests on the true surface, and
+    # matplotlib's painter's algorithm would otherwise draw facets through it.
+    centre = [sum(v[k] for v in shape_v) / len(shape_v) for k in range(3)]
+    shape_v = [tuple(centre[k] + 0.98 * (v[k] - centre[k]) for k in range(3)) for v in shape_v]
+    cols = min(3, len(frames))
+    rows = math.ceil(len(frames) / cols)
+    fig = plt.figure(figsize=(5 * cols, 3.8 * rows))
+    for k, name in enumerate(frames):
+        ax = fig.add_subplot(rows, cols, k + 1, projection="3d")
+        cloth_v, cloth_f = read_obj(os.path.join(frames_dir, name))
+        # One collection, so that matplotlib depth-sorts the shape's and the cloth's faces
+        # together; flat shading by hand (Debian's matplotlib has no `shade`).
+        polys = [[shape_v[i] for i in f] for f in shape_f] + [[cloth_v[i] for i in f] for f in cloth_f]
+        base = [(0.69, 0.77, 0.87)] * len(shape_f) + [(0.80, 0.36, 0.36)] * len(cloth_f)
+        ax.add_collection3d(Poly3DCollection(polys, facecolors=shaded(polys, base), edgecolor="none"))
+        ax.set_xlim(-5, 5)
+        ax.set_ylim(-5, 5)
+        ax.set_zlim(-3.5, 3)
+        ax.set_box_aspect((10, 10, 6.5))
+        ax.view_init(elev=25, azim=-60)
+        ax.set_axis_off()
+        t = float(name.split("_")[1].rsplit(".", 1)[0])
+        ax.set_title(f"t = {t:g} s", fontsize=10)
+    fig.suptitle(f"{run['scene']['name']} ({LABEL.get(model, model)})")
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+    return True
+
+
+def tables(run):
+    """The paper's Table 5/6 layout with its values beside ours, and the accuracy table."""
+    n = run["scene"]["vertices"]
+    paper = PAPER.get(n, {})
+    runs = {r["model"]: r for r in run["runs"]}
+    models = [m for m in ("exact", "paper", "mesh", "bullet") if m in runs]
+    head = "| ms per step | paper (its machine) | " + " | ".join(LABEL[m] for m in models) + " |"
+    lines = [head, "|---" * (2 + len(models)) + "|"]
+    for key, name in PHASES:
+        cells = [fmt(runs[m]["mean_ms"].get(key)) for m in models]
+        if not any(cells) and key not in paper:
+            continue
+        lines.append(f"| {name} | {fmt(paper.get(key))} | " + " | ".join(cells) + " |")
+    if "collision_detection" in runs.get("exact", {}).get("mean_ms", {}):
+        ex = runs["exact"]["mean_ms"]
+        lines.append(f"| collision / total | {fmt(100 * paper['collision_detection'] / paper['total'], 0) + ' %' if paper else ''} | "
+                     + " | ".join((fmt(100 * runs[m]['mean_ms']['collision_detection'] / runs[m]['mean_ms']['total'], 0) + " %")
+                                  if "collision_detection" in runs[m]["mean_ms"] else "" for m in models) + " |")
+    acc = ["| accuracy (against the exact surface) | " + " | ".join(LABEL[m] for m in models) + " |",
+           "|---" * (1 + len(models)) + "|"]
+    acc.append("| deepest vertex inside, any step (m) | " + " | ".join(fmt(runs[m]["max_penetration"]) for m in models) + " |")
+    acc.append("| contact vertices' distance to the surface, mean (m) | " + " | ".join(
+        fmt(runs[m]["contact_error_mean"]) if m != "bullet" else "" for m in models) + " |")
+    acc.append("| the same, worst (m) | " + " | ".join(
+        fmt(runs[m]["contact_error_max"]) if m != "bullet" else "" for m in models) + " |")
+    acc.append("| first contact (s) | " + " | ".join(
+        fmt(runs[m]["first_contact_time"], 2) if m != "bullet" else "" for m in models) + " |")
+    acc.append("| largest edge strain | " + " | ".join(
+        fmt(runs[m]["max_edge_strain"]) if m != "bullet" else "" for m in models) + " |")
+    acc.append("| fastest vertex at the end (m/s) | " + " | ".join(
+        fmt(runs[m]["final_max_speed"]) if m != "bullet" else "" for m in models) + " |")
+    return "\n".join(lines), "\n".join(acc)
+
+
+def ratios(run):
+    runs = {r["model"]: r for r in run["runs"]}
+    out = []
+    if "exact" in runs and "paper" in runs:
+        out.append(f"collision detection, Exact / paper's method: "
+                   f"{runs['exact']['mean_ms']['collision_detection'] / runs['paper']['mean_ms']['collision_detection']:.2f}")
+    if "exact" in runs and "bullet" in runs:
+        out.append(f"step, Exact / Bullet: {runs['exact']['mean_ms']['total'] / runs['bullet']['mean_ms']['total']:.3f}")
+    return out
+
+
+def commit():
+    try:
+        return subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
+                              text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "?"
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("runs", nargs="+")
+    parser.add_argument("--docs")
+    parser.add_argument("--readme")
+    args = parser.parse_args()
+    sections, headline = [], []
+    for run_dir in args.runs:
+        with open(os.path.join(run_dir, "run.json")) as f:
+            run = json.load(f)
+        name = run["scene"]["name"] or os.path.basename(os.path.normpath(run_dir))
+        run["scene"]["name"] = name
+        target = os.path.join(args.docs, "scenes") if args.docs else run_dir
+        os.makedirs(target, exist_ok=True)
+        tol = run["scene"]["tolerance"] or None
+        plot_series(run_dir, run, "total_ms", "ms per step", os.path.join(target, f"step_time_{name}.png"), log=True)
+        plot_series(run_dir, run, "max_penetration", "deepest vertex inside (m)",
+                    os.path.join(target, f"penetration_{name}.png"), log=True, tolerance=tol)
+        pictures = plot_pictures(run_dir, run, os.path.join(target, f"cloth_{name}.png"))
+        timing, accuracy = tables(run)
+        s = run["scene"]
+        rel = "scenes/" if args.docs else ""
+        section = [f"### {name}: {s['vertices']:,} vertices, {s['triangles']:,} triangles",
+                   "", f"Step {s['step']:.5g} s, {s['substeps']} substeps, {s['duration']:g} s simulated, "
+                   f"tolerance {s['tolerance']:g} m; effects: {', '.join(s['effects'])}.", "",
+                   timing, "", accuracy, "", "; ".join(ratios(run)) + ".", "",
+                   f"![step time]({rel}step_time_{name}.png)", "",
+                   f"![penetration]({rel}penetration_{name}.png)", ""]
+        if pictures:
+            section += [f"![the cloth]({rel}cloth_{name}.png)", ""]
+        sections.append("\n".join(section))
+        runs = {r["model"]: r for r in run["runs"]}
+        if "exact" in runs:
+            ex = runs["exact"]
+            row = (f"| {name} | {fmt(ex['mean_ms'].get('collision_detection'))} | {fmt(ex['mean_ms']['total'])} | "
+                   f"{fmt(PAPER.get(s['vertices'], {}).get('total'))} | "
+                   f"{fmt(runs['bullet']['mean_ms']['total']) if 'bullet' in runs else ''} | {fmt(ex['max_penetration'])} |")
+            headline.append(row)
+        machine = f"{run['machine']}, SIMD {run['simd']}"
+    stamp = f"_Run at commit {commit()}; machine: {machine}. Command: `scripts/scenes.sh --full`._"
+    results = "\n".join(sections) + "\n" + stamp
+    for path in [os.path.join(a, "results.md") for a in args.runs] if not args.docs else []:
+        with open(path, "w") as f:
+            f.write(results + "\n")
+    if args.docs:
+        doc = os.path.join(args.docs, "scenes.md")
+        with open(doc) as f:
+            text = f.read()
+        block = f"<!-- results:begin (generated by sim/scene_report.py; do not edit) -->\n{results}\n<!-- results:end -->"
+        text, count = re.subn(r"<!-- results:begin.*?<!-- results:end -->", lambda m: block, text, flags=re.S)
+        if count != 1:
+            sys.exit(f"{doc}: no results block to replace")
+        with open(doc, "w") as f:
+            f.write(text)
+        print(f"written: {doc}")
+    if args.readme and headline:
+        with open(args.readme) as f:
+            text = f.read()
+        table = ("| scene | collision ms/step (Exact) | total ms/step | paper's total | Bullet's total | deepest vertex inside (m) |\n"
+                 "|---|---|---|---|---|---|\n" + "\n".join(headline))
+        block = (f"<!-- scenes:begin (generated by sim/scene_report.py; do not edit) -->\n{table}\n\n{stamp}\n"
+                 f"<!-- scenes:end -->")
+        text, count = re.subn(r"<!-- scenes:begin.*?<!-- scenes:end -->", lambda m: block, text, flags=re.S)
+        if count != 1:
+            sys.exit(f"{args.readme}: no scenes block to replace")
+        with open(args.readme, "w") as f:
+            f.write(text)
+        print(f"written: {args.readme} (scenes block)")
+
+
+if __name__ == "__main__":
+    main()

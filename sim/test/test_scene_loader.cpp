@@ -1,0 +1,202 @@
+// Strict loading: every mistake a scene file can hold is refused with a message that says
+// where it is (JSON Pointer, or line and column), and the runner writes nothing.
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "physics/cloth_mesh.h"
+#include "scene/scene_loader.h"
+
+namespace fse_sim {
+namespace {
+
+// A valid scene; each test breaks one thing in it.
+const char* kValid = R"({
+  "effects": ["gravity", "stretch", "collision"],
+  "time": {"step": 0.01, "substeps": 4, "duration": 0.1},
+  "cloth": {"grid": [4, 5], "size": [1, 1], "centre": [0, 0, 2], "mass": 1},
+  "shapes": [{"radii": [1, 1, 1], "exponents": [0.5, 0.5]}],
+  "stretch": {"compliance": 0},
+  "collision": {"tolerance": 0.01}
+})";
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+/// The message parseScene gives `text`; fails the test if it parses.
+std::string errorOf(const std::string& text) {
+  try {
+    parseScene(text, "test.json");
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "accepted:\n" << text;
+  return "";
+}
+
+#define EXPECT_REFUSED(text, ...)                           \
+  do {                                                      \
+    const std::string message = errorOf(text);              \
+    for (const char* part : {__VA_ARGS__}) {                \
+      EXPECT_NE(message.find(part), std::string::npos)      \
+          << "message: " << message << "\nlacks: " << part; \
+    }                                                       \
+  } while (0)
+
+TEST(SceneLoaderTest, ValidSceneLoads) {
+  const Scene scene = parseScene(kValid, "test.json");
+  EXPECT_EQ(scene.effects.size(), 3u);
+  EXPECT_TRUE(scene.has(Effect::kCollision));
+  EXPECT_FALSE(scene.has(Effect::kFriction));
+  EXPECT_FALSE(scene.friction.has_value());
+  EXPECT_EQ(scene.cloth.nx, 4);
+  EXPECT_EQ(scene.time.substeps, 4);
+  EXPECT_DOUBLE_EQ(scene.collision->tolerance, 0.01);
+}
+
+TEST(SceneLoaderTest, ShippedScenesLoadWithThePapersMeshCounts) {
+  const Scene small = loadScene(std::string(FSE_SIM_SCENES) + "/cloth_3240.json");
+  const ClothMesh mesh = makeClothMesh(small.cloth);
+  EXPECT_EQ(mesh.vertexCount(), 3240);
+  EXPECT_EQ(mesh.triangles.size(), 6254u);
+  const Scene large = loadScene(std::string(FSE_SIM_SCENES) + "/cloth_6460.json");
+  EXPECT_EQ(makeClothMesh(large.cloth).vertexCount(), 6460);
+  for (const Scene* s : {&small, &large}) {
+    EXPECT_EQ(s->shapes.size(), 1u);
+    EXPECT_EQ(s->shapes[0].radii, Eigen::Vector3d(3.5, 3.0, 2.0));
+    EXPECT_EQ(s->shapes[0].eps1, 0.4);
+    EXPECT_EQ(s->shapes[0].eps2, 0.3);
+    EXPECT_EQ(s->collision->tolerance, 0.025);
+  }
+}
+
+TEST(SceneLoaderTest, UnknownKeyNamedByItsPath) {
+  EXPECT_REFUSED(replaced(kValid, "\"mass\": 1", "\"mass\": 1, \"colour\": 3"), "/cloth/colour",
+                 "unknown key");
+  EXPECT_REFUSED(replaced(kValid, "\"exponents\"", "\"colour\": 1, \"exponents\""),
+                 "/shapes/0/colour", "unknown key");
+  EXPECT_REFUSED(replaced(kValid, "\"effects\"", "\"wind\": {}, \"effects\""), "/wind",
+                 "unknown key");
+}
+
+TEST(SceneLoaderTest, UnknownEffectListsTheValidOnes) {
+  EXPECT_REFUSED(replaced(kValid, "\"gravity\",", "\"wind\","), "/effects/0", "\"wind\"",
+                 "gravity, stretch, bending, pinning, collision, friction, damping");
+}
+
+TEST(SceneLoaderTest, EffectDeclaredTwice) {
+  EXPECT_REFUSED(replaced(kValid, "\"gravity\",", "\"gravity\", \"gravity\","), "/effects/1",
+                 "twice");
+}
+
+TEST(SceneLoaderTest, BlockForAnEffectNotDeclared) {
+  EXPECT_REFUSED(replaced(kValid, "\"stretch\": {", "\"damping\": {\"linear\": 1}, \"stretch\": {"),
+                 "/damping", "not declared", "gravity, stretch, collision");
+}
+
+TEST(SceneLoaderTest, WrongType) {
+  EXPECT_REFUSED(replaced(kValid, "\"step\": 0.01", "\"step\": \"fast\""), "/time/step",
+                 "must be a number", "a string");
+  EXPECT_REFUSED(replaced(kValid, "\"substeps\": 4", "\"substeps\": 4.5"), "/time/substeps",
+                 "an integer");
+  EXPECT_REFUSED(replaced(kValid, "\"grid\": [4, 5]", "\"grid\": 20"), "/cloth/grid", "an array");
+  EXPECT_REFUSED(replaced(kValid, "\"centre\": [0, 0, 2]", "\"centre\": [0, 2]"), "/cloth/centre",
+                 "3 numbers");
+  EXPECT_REFUSED(replaced(kValid, "\"effects\": [\"gravity\"", "\"effects\": [7"), "/effects/0",
+                 "a string");
+  EXPECT_REFUSED(R"([1, 2])", "must be an object");
+}
+
+TEST(SceneLoaderTest, MissingRequiredKey) {
+  EXPECT_REFUSED(replaced(kValid, "\"step\": 0.01, ", ""), "/time/step", "missing");
+  EXPECT_REFUSED(replaced(kValid, "\"effects\": [\"gravity\", \"stretch\", \"collision\"],", ""),
+                 "/effects", "missing");
+}
+
+TEST(SceneLoaderTest, NonFiniteOrOutOfRangeValues) {
+  // JSON has no infinity; a literal beyond double's range is refused while parsing.
+  EXPECT_REFUSED(replaced(kValid, "\"step\": 0.01", "\"step\": 1e999"), "1e999", "line 3",
+                 "not a finite number");
+  EXPECT_REFUSED(replaced(kValid, "\"step\": 0.01", "\"step\": 0"), "/time/step", "(0, 1]",
+                 "got 0");
+  EXPECT_REFUSED(replaced(kValid, "\"step\": 0.01", "\"step\": -0.01"), "/time/step", "got -0.01");
+  EXPECT_REFUSED(replaced(kValid, "\"compliance\": 0", "\"compliance\": -1"), "/stretch/compliance",
+                 "≥ 0", "got -1");
+  EXPECT_REFUSED(replaced(kValid, "\"grid\": [4, 5]", "\"grid\": [0, 5]"), "/cloth/grid/0",
+                 "at least 2", "got 0");
+  EXPECT_REFUSED(replaced(kValid, "\"grid\": [4, 5]", "\"grid\": [100000, 100000]"), "/cloth/grid",
+                 "at most");
+  EXPECT_REFUSED(replaced(kValid, "\"tolerance\": 0.01", "\"tolerance\": 0"),
+                 "/collision/tolerance", "got 0");
+  EXPECT_REFUSED(replaced(kValid, "\"mass\": 1", "\"mass\": -2"), "/cloth/mass", "got -2");
+  EXPECT_REFUSED(replaced(kValid, "\"duration\": 0.1", "\"duration\": 0.001"), "/time/duration",
+                 "at least one step");
+}
+
+TEST(SceneLoaderTest, ExponentsOutsideTheShapesRangeGetTheLibrarysError) {
+  // The library names the exponent and its value; the loader adds where the shape is.
+  const std::string message = errorOf(replaced(kValid, "[0.5, 0.5]", "[2.5, 0.5]"));
+  EXPECT_NE(message.find("/shapes/0"), std::string::npos) << message;
+  EXPECT_NE(message.find("eps1"), std::string::npos) << message;
+  EXPECT_NE(message.find("2.5"), std::string::npos) << message;
+  EXPECT_REFUSED(replaced(kValid, "[0.5, 0.5]", "[0.5, 0]"), "/shapes/0", "eps2");
+  EXPECT_REFUSED(replaced(kValid, "\"radii\": [1, 1, 1]", "\"radii\": [1, -1, 1]"), "/shapes/0");
+}
+
+TEST(SceneLoaderTest, PinnedVertexOutOfRange) {
+  const std::string scene =
+      replaced(replaced(kValid, "\"collision\"]", "\"collision\", \"pinning\"]"), "\"stretch\": {",
+               "\"pinning\": {\"fixed\": [0, 20]}, \"stretch\": {");
+  EXPECT_REFUSED(scene, "/pinning/fixed/1", "[0, 19]", "got 20");
+}
+
+TEST(SceneLoaderTest, FrictionWithoutCollisionAndCollisionWithoutShapes) {
+  EXPECT_REFUSED(replaced(kValid, "\"collision\"]", "\"friction\"]"), "friction", "collision");
+  EXPECT_REFUSED(
+      replaced(kValid, "\"shapes\": [{\"radii\": [1, 1, 1], \"exponents\": [0.5, 0.5]}],", ""),
+      "/shapes", "no shapes");
+}
+
+TEST(SceneLoaderTest, InvalidJsonGivesLineAndColumn) {
+  EXPECT_REFUSED(replaced(kValid, "\"substeps\": 4,", "\"substeps\": 4,,"), "test.json",
+                 "invalid JSON", "line 3", "column");
+  EXPECT_REFUSED("", "invalid JSON", "line 1");
+}
+
+TEST(SceneLoaderTest, MissingFile) {
+  try {
+    loadScene("/nonexistent/scene.json");
+    FAIL() << "accepted a missing file";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/scene.json"), std::string::npos);
+  }
+}
+
+// The runner itself: a bad scene exits non-zero and writes nothing.
+TEST(SceneLoaderTest, RunnerRefusesABadSceneAndWritesNothing) {
+  const auto dir = std::filesystem::temp_directory_path() / "fse_sim_bad_scene_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto scene = dir / "bad.json";
+  std::ofstream(scene) << replaced(kValid, "\"step\": 0.01", "\"step\": -1");
+  const auto out = dir / "out";
+  const std::string command = std::string(FSE_SIM_BINARY) + " " + scene.string() + " --out " +
+                              out.string() + " 2>" + (dir / "stderr.txt").string();
+  const int status = std::system(command.c_str());
+  EXPECT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  EXPECT_FALSE(std::filesystem::exists(out));
+  std::ifstream err(dir / "stderr.txt");
+  const std::string message((std::istreambuf_iterator<char>(err)), {});
+  EXPECT_NE(message.find("/time/step"), std::string::npos) << message;
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace fse_sim
