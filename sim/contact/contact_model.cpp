@@ -20,6 +20,14 @@ Eigen::Isometry3d shapePose(const ShapeSpec& spec) {
   return pose;
 }
 
+fcl::Transform3d shapeTransform(const ShapeSpec& spec) {
+  const Eigen::Isometry3d pose = shapePose(spec);
+  fcl::Transform3d X = fcl::Transform3d::Identity();
+  X.linear() = pose.linear();
+  X.translation() = pose.translation();
+  return X;
+}
+
 fcl_superellipsoid::Superellipsoidd makeShape(const ShapeSpec& spec) {
   return fcl_superellipsoid::Superellipsoidd(spec.radii[0], spec.radii[1], spec.radii[2], spec.eps1,
                                              spec.eps2);

@@ -29,6 +29,8 @@ struct ContactCandidate {
 
 /// The pose of a scene shape: translation, then rotations about fixed x, y, z.
 Eigen::Isometry3d shapePose(const ShapeSpec& spec);
+/// The same pose as FCL's transform (what the library's calls take).
+fcl::Transform3d shapeTransform(const ShapeSpec& spec);
 fcl_superellipsoid::Superellipsoidd makeShape(const ShapeSpec& spec);
 
 class ContactDetector {

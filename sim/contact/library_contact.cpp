@@ -18,10 +18,7 @@ namespace {
 class LibraryContact final : public ContactDetector {
  public:
   LibraryContact(const ShapeSpec& spec, int index, int vertex_count, const ContactOptions& options)
-      : shape_(makeShape(spec)), index_(index) {
-    const Eigen::Isometry3d pose = shapePose(spec);
-    X_WS_.linear() = pose.linear();
-    X_WS_.translation() = pose.translation();
+      : shape_(makeShape(spec)), index_(index), X_WS_(shapeTransform(spec)) {
     if (options.model == ContactModel::kPaper) {
       // The paper's case-study settings: tolerance 1e-3 (absolute, as in the paper; the
       // library's tolerances are relative to the shape's size) and 10 iterations.
@@ -47,7 +44,7 @@ class LibraryContact final : public ContactDetector {
  private:
   fse::Superellipsoidd shape_;
   int index_;
-  fcl::Transform3d X_WS_ = fcl::Transform3d::Identity();
+  fcl::Transform3d X_WS_;
   fse::BatchOptions<double> options_;
   Eigen::Matrix3Xd warm_start_;
   std::vector<fse::VertexContact<double>> contacts_;  // reused: no allocation once grown

@@ -12,11 +12,7 @@ namespace fse = fcl_superellipsoid;
 Measurer::Measurer(const Scene& scene) {
   for (const ShapeSpec& spec : scene.shapes) {
     shapes_.push_back(makeShape(spec));
-    const Eigen::Isometry3d pose = shapePose(spec);
-    fcl::Transform3d X = fcl::Transform3d::Identity();
-    X.linear() = pose.linear();
-    X.translation() = pose.translation();
-    poses_.push_back(X);
+    poses_.push_back(shapeTransform(spec));
   }
 }
 
