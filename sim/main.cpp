@@ -75,7 +75,7 @@ void writeShapes(const Scene& scene, const std::string& path) {
 
 RunSummary runModel(const Scene& scene, ContactModel model, const Options& options, long steps,
                     const fs::path& dir, fse::support::ProgressBar& progress) {
-  ContactOptions contact;
+  SimulationOptions contact;
   contact.model = model;
   contact.mesh_vertices = options.mesh_vertices;
   contact.threads = options.threads;

@@ -6,8 +6,8 @@ namespace fse_sim {
 
 // Defined beside their models (library_contact.cpp, mesh_contact.cpp).
 std::unique_ptr<ContactDetector> makeLibraryContact(const ShapeSpec&, int, int,
-                                                    const ContactOptions&);
-std::unique_ptr<ContactDetector> makeMeshContact(const ShapeSpec&, int, const ContactOptions&);
+                                                    const SimulationOptions&);
+std::unique_ptr<ContactDetector> makeMeshContact(const ShapeSpec&, int, const SimulationOptions&);
 
 Eigen::Isometry3d shapePose(const ShapeSpec& spec) {
   const Eigen::Vector3d r = spec.rotation_deg * (M_PI / 180);
@@ -35,7 +35,7 @@ fcl_superellipsoid::Superellipsoidd makeShape(const ShapeSpec& spec) {
 
 std::unique_ptr<ContactDetector> makeContactDetector(const ShapeSpec& spec, int index,
                                                      int vertex_count,
-                                                     const ContactOptions& options) {
+                                                     const SimulationOptions& options) {
   if (options.model == ContactModel::kMesh) return makeMeshContact(spec, index, options);
   return makeLibraryContact(spec, index, vertex_count, options);
 }

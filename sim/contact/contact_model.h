@@ -42,16 +42,10 @@ class ContactDetector {
                       std::vector<ContactCandidate>& out) = 0;
 };
 
-struct ContactOptions {
-  ContactModel model = ContactModel::kExact;
-  int mesh_vertices = 702;  ///< kMesh: the tessellation's vertex count (the paper's display mesh)
-  int threads = 0;          ///< the library's batched queries: 0 = as many as TBB offers
-};
-
 /// The detector of shape `index` of the scene for `options.model`.
 std::unique_ptr<ContactDetector> makeContactDetector(const ShapeSpec& spec, int index,
                                                      int vertex_count,
-                                                     const ContactOptions& options);
+                                                     const SimulationOptions& options);
 
 }  // namespace fse_sim
 

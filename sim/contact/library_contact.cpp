@@ -17,7 +17,8 @@ namespace {
 
 class LibraryContact final : public ContactDetector {
  public:
-  LibraryContact(const ShapeSpec& spec, int index, int vertex_count, const ContactOptions& options)
+  LibraryContact(const ShapeSpec& spec, int index, int vertex_count,
+                 const SimulationOptions& options)
       : shape_(makeShape(spec)), index_(index), X_WS_(shapeTransform(spec)) {
     if (options.model == ContactModel::kPaper) {
       // The paper's case-study settings: tolerance 1e-3 (absolute, as in the paper; the
@@ -54,7 +55,7 @@ class LibraryContact final : public ContactDetector {
 
 std::unique_ptr<ContactDetector> makeLibraryContact(const ShapeSpec& spec, int index,
                                                     int vertex_count,
-                                                    const ContactOptions& options) {
+                                                    const SimulationOptions& options) {
   return std::make_unique<LibraryContact>(spec, index, vertex_count, options);
 }
 

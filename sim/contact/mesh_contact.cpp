@@ -27,7 +27,7 @@ namespace {
 
 class MeshContact final : public ContactDetector {
  public:
-  MeshContact(const ShapeSpec& spec, int index, const ContactOptions& options)
+  MeshContact(const ShapeSpec& spec, int index, const SimulationOptions& options)
       : index_(index), pose_(shapePose(spec)), point_(0) {
     mesh_ = fse::tessellate(makeShape(spec), options.mesh_vertices);
     model_ = fse::makeBVHModel<fcl::OBBRSSd>(mesh_);
@@ -135,7 +135,7 @@ class MeshContact final : public ContactDetector {
 }  // namespace
 
 std::unique_ptr<ContactDetector> makeMeshContact(const ShapeSpec& spec, int index,
-                                                 const ContactOptions& options) {
+                                                 const SimulationOptions& options) {
   return std::make_unique<MeshContact>(spec, index, options);
 }
 

@@ -5,7 +5,7 @@
 
 namespace fse_sim {
 
-ClothSimulation::ClothSimulation(const Scene& scene, const ContactOptions& contact_options)
+ClothSimulation::ClothSimulation(const Scene& scene, const SimulationOptions& options)
     : scene_(scene),
       mesh_(makeClothMesh(scene.cloth)),
       x_(mesh_.rest_positions),
@@ -28,10 +28,14 @@ ClothSimulation::ClothSimulation(const Scene& scene, const ContactOptions& conta
     }
     attachments_ = scene.pinning->attached;
   }
-  if (scene.collision) contacts_ = std::make_unique<Contacts>(scene, contact_options);
+  if (scene.collision) contacts_ = std::make_unique<Contacts>(scene, options);
   if (scene.damping) damping_ = scene.damping->linear;
   position_pass_ = stretch_ || bending_ || !attachments_.empty();
   velocity_pass_ = scene.friction || scene.damping;
+  if (options.threads != 1) {
+    arena_ = options.threads > 1 ? std::make_unique<tbb::task_arena>(options.threads)
+                                 : std::make_unique<tbb::task_arena>();
+  }
 
   phases_.push_back(Phase::kIntegration);
   if (position_pass_) phases_.push_back(Phase::kPositionConstraints);
@@ -56,7 +60,14 @@ void ClothSimulation::step() {
       contacts_->detect(x_, std::sqrt(max_speed2), gravity_.norm(), h);
     }
     const int n = scene_.time.substeps;
-    for (int s = 0; s < n; ++s) substep(h / n);
+    const auto substeps = [&] {
+      for (int s = 0; s < n; ++s) substep(h / n);
+    };
+    if (arena_) {
+      arena_->execute(substeps);
+    } else {
+      substeps();
+    }
   }
   time_ = scene_.time.step * double(++steps_);
 }
@@ -76,8 +87,9 @@ void ClothSimulation::substep(double h) {
   }
   if (position_pass_) {
     ScopedPhase timer(times_, Phase::kPositionConstraints);
-    if (stretch_) stretch_->project(x_, w_, h);
-    if (bending_) bending_->project(x_, w_, h);
+    const bool parallel = arena_ != nullptr;
+    if (stretch_) stretch_->project(x_, w_, h, parallel);
+    if (bending_) bending_->project(x_, w_, h, parallel);
     for (const AttachmentSpec& a : attachments_) {
       // C = |x − target| toward 0: a zero-length spring of compliance α to a fixed point.
       const double wi = w_[a.vertex];

@@ -5,6 +5,8 @@
 // effects the scene declares are constructed; a step runs only their code, and the phases
 // they own (phases.h) exist only when one of them is declared.
 
+#include <tbb/task_arena.h>
+
 #include <Eigen/Core>
 #include <memory>
 #include <optional>
@@ -21,7 +23,7 @@ namespace fse_sim {
 
 class ClothSimulation {
  public:
-  ClothSimulation(const Scene& scene, const ContactOptions& contact_options = {});
+  ClothSimulation(const Scene& scene, const SimulationOptions& options = {});
 
   /// Advances by one step (Scene::time.step).
   void step();
@@ -61,7 +63,8 @@ class ClothSimulation {
   std::unique_ptr<Contacts> contacts_;
   double damping_ = 0;
   bool velocity_pass_ = false, position_pass_ = false;
-  DistanceConstraints edges_;  ///< every edge, for measuring strain only
+  DistanceConstraints edges_;               ///< every edge, for measuring strain only
+  std::unique_ptr<tbb::task_arena> arena_;  ///< the run's threads (none: the calling thread)
   std::vector<Phase> phases_;
   PhaseTimes times_{};
   double time_ = 0;

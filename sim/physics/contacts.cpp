@@ -5,7 +5,7 @@
 
 namespace fse_sim {
 
-Contacts::Contacts(const Scene& scene, const ContactOptions& options)
+Contacts::Contacts(const Scene& scene, const SimulationOptions& options)
     : tolerance_(scene.collision->tolerance), friction_(scene.friction.has_value()) {
   const int n = scene.cloth.nx * scene.cloth.ny;
   for (std::size_t i = 0; i < scene.shapes.size(); ++i) {

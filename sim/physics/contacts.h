@@ -26,7 +26,7 @@ namespace fse_sim {
 
 class Contacts {
  public:
-  Contacts(const Scene& scene, const ContactOptions& options);
+  Contacts(const Scene& scene, const SimulationOptions& options);
 
   /// Collision detection for the step to come: candidates for vertices that may reach the
   /// surface, given the largest vertex speed and the step.

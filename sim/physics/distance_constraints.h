@@ -21,8 +21,11 @@ class DistanceConstraints {
   DistanceConstraints(const std::vector<std::array<int, 2>>& pairs, const Eigen::Matrix3Xd& rest,
                       double compliance);
 
-  /// One projection of every constraint, in order, for a substep of length h.
-  void project(Eigen::Matrix3Xd& x, const Eigen::VectorXd& inverse_mass, double h) const;
+  /// One projection of every constraint, colour after colour, for a substep of length h. With
+  /// `parallel`, a large colour is split over the current TBB arena's threads: the pairs of a
+  /// colour share no vertex, so the result is bitwise the same for any number of threads.
+  void project(Eigen::Matrix3Xd& x, const Eigen::VectorXd& inverse_mass, double h,
+               bool parallel = false) const;
 
   /// max |C / L| over the constraints (strain of the edges).
   double maxStrain(const Eigen::Matrix3Xd& x) const;
@@ -30,7 +33,15 @@ class DistanceConstraints {
   double energy(const Eigen::Matrix3Xd& x) const;
 
  private:
-  std::vector<std::array<int, 2>> pairs_;
+  /// Pairs per task when a colour is split over threads.
+  static constexpr std::size_t kParallelGrain = 512;
+
+  void projectRange(std::size_t first, std::size_t last, Eigen::Matrix3Xd& x,
+                    const Eigen::VectorXd& inverse_mass, double alpha_tilde) const;
+
+  // colour_begin_ before pairs_: the constructor fills both from one call.
+  std::vector<std::size_t> colour_begin_;  ///< where each colour starts; then pairs_.size()
+  std::vector<std::array<int, 2>> pairs_;  ///< grouped by colour
   std::vector<double> rest_length_;
   double compliance_;
 };

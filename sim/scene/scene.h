@@ -35,6 +35,15 @@ enum class ContactModel {
 const char* toString(ContactModel model);
 std::optional<ContactModel> contactModelNamed(const std::string& name);
 
+/// What a run chooses (the command line), not the scene file.
+struct SimulationOptions {
+  ContactModel model = ContactModel::kExact;
+  int mesh_vertices = 702;  ///< kMesh: the tessellation's vertex count (the paper's display mesh)
+  /// Threads for the library's batched queries and the constraint sweeps: 0 = as many as TBB
+  /// offers, 1 = the calling thread only. Results are bitwise the same for any count.
+  int threads = 0;
+};
+
 struct TimeSpec {
   double step = 1.0 / 60;  ///< s, one simulation step (a frame)
   int substeps = 10;       ///< XPBD substeps per step, one constraint iteration each

@@ -66,7 +66,7 @@ TEST(ClothPhysicsTest, ClothComesToRestOnTheShape) {
 TEST(ClothPhysicsTest, SameResultsForOneAndTwoThreads) {
   // 40 × 40 = 1,600 vertices: above the batched queries' threshold for a second thread.
   const Scene scene = test::smallClothScene(kClothEffects, kClothBlocks, 1.0, 40);
-  ContactOptions one, two;
+  SimulationOptions one, two;
   one.threads = 1;
   two.threads = 2;
   ClothSimulation a(scene, one), b(scene, two);

@@ -52,7 +52,7 @@ void checkModel(ContactModel model, double distance_tolerance) {
   const ShapeSpec spec = posedShape();
   std::vector<double> truth;
   const Eigen::Matrix3Xd p = pointsAround(spec, truth, 400);
-  ContactOptions options;
+  SimulationOptions options;
   options.model = model;
   auto detector = makeContactDetector(spec, 0, int(p.cols()), options);
   std::vector<ContactCandidate> found;
@@ -86,7 +86,7 @@ TEST(ContactModelsTest, PaperIsThePapersMethodAtItsCaseStudySettings) {
   const ShapeSpec spec = posedShape();
   std::vector<double> truth;
   const Eigen::Matrix3Xd p = pointsAround(spec, truth, 400);
-  ContactOptions options;
+  SimulationOptions options;
   options.model = ContactModel::kPaper;
   auto detector = makeContactDetector(spec, 0, int(p.cols()), options);
   std::vector<ContactCandidate> found;
