@@ -6,7 +6,9 @@
 namespace fse_sim {
 
 Contacts::Contacts(const Scene& scene, const SimulationOptions& options)
-    : tolerance_(scene.collision->tolerance), friction_(scene.friction.has_value()) {
+    : tolerance_(scene.collision->tolerance),
+      skin_(kSkinPerTolerance * scene.collision->tolerance),
+      friction_(scene.friction.has_value()) {
   const int n = scene.cloth.nx * scene.cloth.ny;
   for (std::size_t i = 0; i < scene.shapes.size(); ++i) {
     detectors_.push_back(makeContactDetector(scene.shapes[i], int(i), n, options));
@@ -38,7 +40,7 @@ void Contacts::project(Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& x_start,
     const ContactCandidate& c = candidates_[k];
     if (inverse_mass[c.vertex] <= 0) continue;
     auto xv = x.col(c.vertex);
-    const double C = c.normal.dot(xv - c.point);
+    const double C = c.normal.dot(xv - c.point) - skin_;
     if (C >= 0) continue;
     xv -= C * c.normal;
     if (friction_) {

@@ -10,7 +10,9 @@
 // the supporting plane at its nearest surface point (point p, outward normal n). In every
 // substep a candidate below its plane (C = n·(x − p) < 0) is moved onto it. The superellipsoid
 // is convex, so the half-space above a supporting plane lies outside the shape: a vertex held
-// on its plane is never inside; what is left inside after a step is the contact model's own
+// on its plane (in fact a skin of 1e-7 × tolerance above it, so that a resting vertex is
+// outside beyond rounding and its next query takes the solver's cheaper outside path) is
+// never inside; what is left inside after a step is the contact model's own
 // error (a plane from an inexact nearest point, or a facet). Friction acts on the vertices
 // pushed in the substep: static as a positional correction (the slip is undone while it is
 // below μs times the push), dynamic in the velocity pass (the tangential velocity loses up to
@@ -52,7 +54,10 @@ class Contacts {
   std::vector<ContactCandidate> candidates_;
   std::vector<int> active_;
   std::vector<double> push_;  ///< per active contact: how far it was pushed (m)
+  /// How far above its plane a contact holds a vertex, per unit of tolerance.
+  static constexpr double kSkinPerTolerance = 1e-7;
   double tolerance_;
+  double skin_;
   double margin_ = 0;
   bool friction_;
   double mu_static_ = 0, mu_dynamic_ = 0;
