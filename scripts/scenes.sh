@@ -14,15 +14,21 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build --parallel "$(nproc)" --target fse_sim
 sim=build/sim/fse_sim
 every=(--contact exact paper mesh --peer --snapshots 0 1 2 3 5 10)
+# The commit a run was made at, for its report's stamp (uncommitted changes marked).
+record_commit() {
+  if commit=$(git describe --always --dirty 2>/dev/null); then echo "$commit" > "$1/commit"; fi
+}
 case "${1:-}" in
   "")
     $sim sim/scenes/cloth_3240.json "${every[@]}" --duration 2 --out out/scenes/cloth_3240
+    record_commit out/scenes/cloth_3240
     /usr/bin/python3 sim/scene_report.py out/scenes/cloth_3240
     echo "results: out/scenes/cloth_3240/results.md"
     ;;
   --full)
     for n in 3240 6460; do
       $sim sim/scenes/cloth_$n.json "${every[@]}" --out out/scenes/cloth_$n
+      record_commit out/scenes/cloth_$n
     done
     /usr/bin/python3 sim/scene_report.py out/scenes/cloth_3240 out/scenes/cloth_6460 \
       --docs docs --readme README.md
