@@ -248,7 +248,8 @@ def main():
                 f"{pen('exact')} / {pen('paper')} / {pen('mesh')} / {pen('bullet')} |")
         machine = f"{run['machine']}, SIMD {run['simd']}"
         run_commit = commit(run_dir)
-    stamp = f"_Run at commit {run_commit}; machine: {machine}. Command: `scripts/scenes.sh --full`._"
+    command = "scripts/scenes.sh --full" if args.docs else "scripts/scenes.sh"
+    stamp = f"_Run at commit {run_commit}; machine: {machine}. Command: `{command}`._"
     results = "\n".join(sections) + "\n" + stamp
     for path in [os.path.join(a, "results.md") for a in args.runs] if not args.docs else []:
         with open(path, "w") as f:
