@@ -8,7 +8,8 @@ shapes.obj). Writes, into DOCS/scenes/ (default: each RUN_DIR itself):
                            (the paper's Figure 11)
   penetration_<scene>.png  deepest vertex inside the shape over time, with the tolerance
   cloth_<scene>.png        the cloth on the shape at the snapshot times (exact model)
-With --docs, also rewrites the results block of DOCS/scenes.md, and with --readme the
+and, without --docs, RUN_DIR/results.md (the tables, generated here; with --docs, rewrites
+the results block of DOCS/scenes.md instead), and with --readme the
 README's scenes block (between `<!-- scenes:begin -->` and `<!-- scenes:end -->`).
 Needs Debian's python3-matplotlib.
 """
