@@ -29,12 +29,9 @@ class ClothSimulation {
   void step();
 
   double time() const { return time_; }
-  long stepCount() const { return steps_; }
-  const Scene& scene() const { return scene_; }
   const ClothMesh& mesh() const { return mesh_; }
   const Eigen::Matrix3Xd& positions() const { return x_; }
   const Eigen::Matrix3Xd& velocities() const { return v_; }
-  const Eigen::VectorXd& inverseMasses() const { return w_; }
   double vertexMass() const { return vertex_mass_; }
 
   /// The phases this scene runs, in the paper's order; the others cost nothing.

@@ -25,9 +25,9 @@ void Contacts::detect(const Eigen::Matrix3Xd& x, double max_speed, double max_ac
   // doubled for what constraints may add: a vertex beyond tolerance + travel cannot reach the
   // surface before the next detection.
   const double travel = 2 * (max_speed * step + max_acceleration * step * step);
-  margin_ = tolerance_ + travel;
+  const double margin = tolerance_ + travel;
   candidates_.clear();
-  for (auto& detector : detectors_) detector->detect(x, margin_, candidates_);
+  for (auto& detector : detectors_) detector->detect(x, margin, candidates_);
   active_.clear();
   push_.clear();
 }

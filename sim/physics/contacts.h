@@ -45,9 +45,6 @@ class Contacts {
   const std::vector<ContactCandidate>& candidates() const { return candidates_; }
   /// Vertices pushed in the last projection (indices into candidates()).
   const std::vector<int>& active() const { return active_; }
-  double tolerance() const { return tolerance_; }
-  /// The margin the last detection used.
-  double margin() const { return margin_; }
 
  private:
   std::vector<std::unique_ptr<ContactDetector>> detectors_;
@@ -58,7 +55,6 @@ class Contacts {
   static constexpr double kSkinPerTolerance = 1e-7;
   double tolerance_;
   double skin_;
-  double margin_ = 0;
   bool friction_;
   double mu_static_ = 0, mu_dynamic_ = 0;
 };

@@ -51,8 +51,6 @@ ObjectReader::ObjectReader(const nlohmann::json& value, std::string path)
   if (!value_.is_object()) wrongType(value_, path_.empty() ? "/" : path_, "an object");
 }
 
-bool ObjectReader::has(const std::string& key) const { return value_.contains(key); }
-
 const nlohmann::json& ObjectReader::required(const std::string& key) {
   const nlohmann::json* member = optional(key);
   if (member == nullptr) throw SceneError(pathOf(key) + ": missing (required)");

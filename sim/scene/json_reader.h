@@ -30,7 +30,6 @@ class ObjectReader {
   /// @throws SceneError if `value` is not an object.
   ObjectReader(const nlohmann::json& value, std::string path);
 
-  bool has(const std::string& key) const;
   /// The member `key`, which must exist.
   const nlohmann::json& required(const std::string& key);
   /// The member `key`, or nullptr.
