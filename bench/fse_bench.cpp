@@ -13,6 +13,7 @@
 #include "accuracy_time.h"
 #include "aspect_sweep.h"
 #include "culling.h"
+#include "pairs.h"
 #include "report.h"
 #include "scaling.h"
 
@@ -90,9 +91,18 @@ int main(int argc, char** argv) {
                  "Instead: the FCL front end's BVH culling on a point cloud of this many vertices "
                  "(1 % near the shape) against brute force")
       ->check(CLI::Range(100, 100000000));
+  int pairs = 0;
+  app.add_option("--pairs", pairs,
+                 "Instead: the superellipsoid against every FCL shape, this many random pairs per "
+                 "kind, against FCL's libccd and Bullet's GJK/EPA (pairs.csv in --out)")
+      ->check(CLI::Range(6, 1000000));
   CLI11_PARSE(app, argc, argv);
 
   if (culling > 0) return runCulling(culling);
+  if (pairs > 0) {
+    if (!out_dir.empty()) std::filesystem::create_directories(out_dir);
+    return runPairs(pairs, out_dir.empty() ? std::string() : out_dir + "/pairs.csv");
+  }
   if (aspect_sweep) return runAspectSweep(quick ? 50 : 200);
 
   std::vector<int> scaling_sizes = {1000, 10000, 100000, 1000000};

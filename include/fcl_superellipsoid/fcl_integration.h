@@ -58,6 +58,7 @@
 #include <fcl/narrowphase/distance.h>
 
 #include "fcl_superellipsoid/export.h"
+#include "fcl_superellipsoid/gjk_support.h"
 #include "fcl_superellipsoid/superellipsoid.h"
 
 namespace fcl_superellipsoid {

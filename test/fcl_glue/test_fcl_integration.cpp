@@ -239,21 +239,35 @@ TYPED_TEST(FclIntegrationTest, SphereIsAVertexWithARadius) {
   }
 }
 
-// Pairs without an entry are refused with FCL's warning, never a crash.
+/// A user's own geometry: FCL gives it BV_UNKNOWN, the superellipsoid's node type, and the
+/// library has no answer for it.
+template <typename S>
+struct UserGeometry : fcl::CollisionGeometry<S> {
+  void computeLocalAABB() override {
+    this->aabb_local = fcl::AABB<S>(Vector3<S>::Constant(-1), Vector3<S>::Constant(1));
+  }
+};
+
+// Pairs without an answer are refused with FCL's warning, never a crash.
 TYPED_TEST(FclIntegrationTest, UnsupportedPairsAreRefused) {
   using S = TypeParam;
   const auto shape = std::make_shared<Superellipsoid<S>>(S(1), S(1), S(1), S(1), S(1));
-  const auto box = std::make_shared<fcl::Box<S>>(S(1), S(1), S(1));
-  fcl::CollisionObject<S> a(shape), b(box), c(shape);
-  fcl::DistanceResult<S> result;
-  EXPECT_EQ(fcl_superellipsoid::distance(&a, &b, fcl::DistanceRequest<S>(), result),
-            std::numeric_limits<S>::max());
-  fcl::CollisionResult<S> cresult;
-  EXPECT_EQ(fcl_superellipsoid::collide(&a, &c, fcl::CollisionRequest<S>(), cresult), 0u);
-  fcl::detail::GJKSolver_libccd<S> solver;
-  fcl::DistanceResult<S> fcl_result;
-  fcl::distance(&b, &a, &solver, fcl::DistanceRequest<S>(), fcl_result);
-  EXPECT_EQ(fcl::collide(&b, &a, &solver, fcl::CollisionRequest<S>(), cresult), 0u);
+  const auto user = std::make_shared<UserGeometry<S>>();
+  fcl::CollisionObject<S> a(shape), b(user);
+  for (bool shape_first : {true, false}) {
+    const auto* o1 = shape_first ? &a : &b;
+    const auto* o2 = shape_first ? &b : &a;
+    fcl::DistanceResult<S> result;
+    EXPECT_EQ(fcl_superellipsoid::distance(o1, o2, fcl::DistanceRequest<S>(), result),
+              std::numeric_limits<S>::max());
+    fcl::CollisionResult<S> cresult;
+    EXPECT_EQ(fcl_superellipsoid::collide(o1, o2, fcl::CollisionRequest<S>(), cresult), 0u);
+    fcl::detail::GJKSolver_libccd<S> solver;
+    fcl::DistanceResult<S> fcl_result;
+    fcl::distance(o1, o2, &solver, fcl::DistanceRequest<S>(), fcl_result);
+    EXPECT_EQ(fcl_result.min_distance, std::numeric_limits<S>::max());
+    EXPECT_EQ(fcl::collide(o1, o2, &solver, fcl::CollisionRequest<S>(), cresult), 0u);
+  }
 }
 
 // Far apart, at the edge of the numeric range (docs/hardening.md → "Numeric range": coordinates

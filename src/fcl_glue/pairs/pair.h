@@ -28,14 +28,14 @@ struct Pair {
   bool shape_first = true;  // the shape is o1
 };
 
-/// The pair, or one with shape == nullptr if neither or both geometries are superellipsoids
-/// (superellipsoid–superellipsoid is not answered yet).
+/// The pair, or one with shape == nullptr if neither geometry is a superellipsoid. Of two
+/// superellipsoids, o1 is the shape and o2 the other.
 template <typename S>
 Pair<S> makePair(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1,
                  const fcl::CollisionGeometry<S>* o2, const fcl::Transform3<S>& tf2) {
   const auto* s1 = dynamic_cast<const Superellipsoid<S>*>(o1);
   const auto* s2 = dynamic_cast<const Superellipsoid<S>*>(o2);
-  if (s1 != nullptr && s2 == nullptr) return {o1, o2, s1, &tf1, o2, &tf2, true};
+  if (s1 != nullptr) return {o1, o2, s1, &tf1, o2, &tf2, true};
   if (s2 != nullptr && s1 == nullptr) return {o1, o2, s2, &tf2, o1, &tf1, false};
   return {o1, o2};
 }

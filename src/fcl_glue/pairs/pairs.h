@@ -4,7 +4,7 @@
 // Internal: distance and collision of a Superellipsoid with another geometry, results in the
 // order (o1, o2) given. The FCL table entries and the front end both call these; the
 // conventions are documented in fcl_integration.h. pairs.cpp dispatches to one file per pair
-// kind (mesh_pair, sphere_pair); docs/design.md → "Adding a pair".
+// kind (sphere, halfspace, smooth, libccd, mesh); docs/design.md → "Adding a pair".
 
 #include <fcl/narrowphase/collision_request.h>
 #include <fcl/narrowphase/collision_result.h>

@@ -3,10 +3,8 @@
 
 // Internal: the superellipsoid against fcl::Sphere, exactly, as a vertex with a radius: the
 // sphere's centre is answered by the point solver (the shape's queryOptions()), and the
-// distance is the centre's signed distance minus the radius. Contact pos is halfway between
-// the two surfaces along the shape's normal.
+// distance is the centre's signed distance minus the radius.
 
-#include <cstddef>
 #include <optional>
 
 #include "fcl_glue/pairs/pair.h"
@@ -14,17 +12,9 @@
 namespace fcl_superellipsoid {
 namespace detail {
 
-/// Answers the pair if the other geometry is an fcl::Sphere: returns result.min_distance;
-/// std::nullopt if it is not a sphere.
+/// The hit if the other geometry is an fcl::Sphere; std::nullopt otherwise.
 template <typename S>
-std::optional<S> sphereDistance(const Pair<S>& pair, const fcl::DistanceRequest<S>& request,
-                                fcl::DistanceResult<S>& result);
-
-/// Adds the contact if the other geometry is an fcl::Sphere and they overlap; false if it is
-/// not a sphere. `room` ≥ 1 is how many contacts the request still takes.
-template <typename S>
-bool sphereCollide(const Pair<S>& pair, const fcl::CollisionRequest<S>& request, std::size_t room,
-                   fcl::CollisionResult<S>& result);
+std::optional<PairHit<S>> sphereHit(const Pair<S>& pair);
 
 }  // namespace detail
 }  // namespace fcl_superellipsoid

@@ -1,0 +1,336 @@
+#include "pairs.h"
+
+#include <BulletCollision/CollisionShapes/btBoxShape.h>
+#include <BulletCollision/CollisionShapes/btCapsuleShape.h>
+#include <BulletCollision/CollisionShapes/btConeShape.h>
+#include <BulletCollision/CollisionShapes/btConvexHullShape.h>
+#include <BulletCollision/CollisionShapes/btCylinderShape.h>
+#include <BulletCollision/CollisionShapes/btSphereShape.h>
+#include <BulletCollision/CollisionShapes/btTriangleShape.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkEpa2.h>
+#include <fcl/geometry/shape/ellipsoid.h>
+#include <fcl/geometry/shape/halfspace.h>
+#include <fcl/geometry/shape/plane.h>
+#include <fcl/geometry/shape/sphere.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "bt_superellipsoid_shape.h"
+#include "fcl_superellipsoid/fcl_integration.h"
+#include "pair_construction.h"
+
+namespace fcl_superellipsoid {
+namespace bench {
+namespace {
+
+using namespace test;  // pair_construction.h
+using Clock = std::chrono::steady_clock;
+
+/// The separations of the buckets, × the superellipsoid's size (Coal's protocol: −0.1 … 1).
+constexpr double kBuckets[] = {-0.1, -0.01, 0.001, 0.01, 0.1, 1.0};
+constexpr int kRepetitions = 5;
+
+/// One configuration: the superellipsoid, the partner, their poses, the constructed distance
+/// (for d ≥ 0 the true distance; for d < 0 an overlap along the construction's normal).
+struct Case {
+  std::shared_ptr<Superellipsoidd> shape;
+  fcl::Transform3d X_WA;
+  std::shared_ptr<fcl::CollisionGeometryd> other;
+  fcl::Transform3d X_WB;
+  double d;
+  double size;
+  int bucket;
+  std::shared_ptr<btConvexShape> bt_shape, bt_other;  // null: no Bullet peer for the partner
+};
+
+std::shared_ptr<Superellipsoidd> makeShape(const RandomShape& s) {
+  return std::make_shared<Superellipsoidd>(Vector3<double>(s.radii.cast<double>()), double(s.e1),
+                                           double(s.e2));
+}
+
+template <typename T>
+std::shared_ptr<btConvexShape> noMargin(std::shared_ptr<T> s) {
+  s->setMargin(0);
+  return s;
+}
+
+/// The Bullet twin of an FCL geometry with the same surface, or null.
+std::shared_ptr<btConvexShape> bulletTwin(const fcl::CollisionGeometryd* g) {
+  if (auto* x = dynamic_cast<const Superellipsoidd*>(g)) {
+    return std::make_shared<support::BtSuperellipsoidShape>(*x);
+  }
+  if (auto* x = dynamic_cast<const fcl::Ellipsoidd*>(g)) {
+    static std::vector<std::unique_ptr<Superellipsoidd>> keep;  // the twins' shapes live on
+    keep.push_back(std::make_unique<Superellipsoidd>(x->radii, 1.0, 1.0));
+    return std::make_shared<support::BtSuperellipsoidShape>(*keep.back());
+  }
+  if (auto* x = dynamic_cast<const fcl::Sphered*>(g)) {
+    return std::make_shared<btSphereShape>(btScalar(x->radius));
+  }
+  if (auto* x = dynamic_cast<const fcl::Boxd*>(g)) {
+    return noMargin(std::make_shared<btBoxShape>(support::toBt(x->side / 2)));
+  }
+  if (auto* x = dynamic_cast<const fcl::Capsuled*>(g)) {
+    return std::make_shared<btCapsuleShapeZ>(btScalar(x->radius), btScalar(x->lz));
+  }
+  if (auto* x = dynamic_cast<const fcl::Cylinderd*>(g)) {
+    return noMargin(std::make_shared<btCylinderShapeZ>(
+        btVector3(btScalar(x->radius), btScalar(x->radius), btScalar(x->lz / 2))));
+  }
+  if (auto* x = dynamic_cast<const fcl::Coned*>(g)) {
+    return noMargin(std::make_shared<btConeShapeZ>(btScalar(x->radius), btScalar(x->lz)));
+  }
+  if (auto* x = dynamic_cast<const fcl::Convexd*>(g)) {
+    auto hull = std::make_shared<btConvexHullShape>();
+    for (const auto& v : x->getVertices()) hull->addPoint(support::toBt(v));
+    return noMargin(hull);
+  }
+  if (auto* x = dynamic_cast<const fcl::TrianglePd*>(g)) {
+    return noMargin(std::make_shared<btTriangleShape>(support::toBt(x->a), support::toBt(x->b),
+                                                      support::toBt(x->c)));
+  }
+  return nullptr;
+}
+
+/// `count` cases of one partner kind, the buckets in turn.
+std::vector<Case> makeCases(const std::string& kind, int count, std::mt19937& rng) {
+  std::vector<Case> cases;
+  std::uniform_real_distribution<double> size(0.5, 5.0);
+  for (int i = 0; i < count; ++i) {
+    const int bucket = i % int(std::size(kBuckets));
+    const LD scale = LD(size(rng));
+    const Construction c = constructShape(rng, scale);
+    const double shape_size = double(c.shape.radii.maxCoeff());
+    const LD d = LD(kBuckets[bucket]) * shape_size;
+    Case k{makeShape(c.shape),
+           c.X_WA,
+           nullptr,
+           fcl::Transform3d::Identity(),
+           double(d),
+           shape_size,
+           bucket,
+           nullptr,
+           nullptr};
+    if (kind == "superellipsoid" || kind == "ellipsoid") {
+      RandomShape partner = randomShape(rng, scale);
+      if (kind == "ellipsoid") partner.e1 = partner.e2 = 1;
+      const SurfacePoint b = randomSurfacePoint(partner, rng);
+      k.X_WB = placePartner(c, d, b.x, b.n, rng);
+      k.other = kind == "ellipsoid"
+                    ? std::shared_ptr<fcl::CollisionGeometryd>(std::make_shared<fcl::Ellipsoidd>(
+                          Vector3<double>(partner.radii.cast<double>())))
+                    : makeShape(partner);
+    } else if (kind == "sphere") {
+      std::normal_distribution<double> g;
+      const V3 m = V3(LD(g(rng)), LD(g(rng)), LD(g(rng))).normalized();
+      const LD radius = scale * LD(0.5);
+      k.X_WB = placePartner(c, d, radius * m, m, rng);
+      k.other = std::make_shared<fcl::Sphered>(double(radius));
+    } else if (kind == "halfspace" || kind == "plane") {
+      const Vector3<double> n = -c.u.cast<double>();
+      const double offset = double(-(c.u.dot(c.a) + d));
+      if (kind == "halfspace") {
+        k.other = std::make_shared<fcl::Halfspaced>(n, offset);
+      } else {
+        k.other = std::make_shared<fcl::Planed>(n, offset);
+      }
+    } else {
+      // box, capsule, cylinder, cone, convex, triangle: any of pair_construction.h's features
+      std::vector<FlatPartner> options;
+      for (FlatPartner& p : flatPartners(rng, scale)) {
+        if (std::string(p.name).rfind(kind, 0) == 0) options.push_back(std::move(p));
+      }
+      const FlatPartner& p = options[std::size_t(i / int(std::size(kBuckets))) % options.size()];
+      k.X_WB = placePartner(c, d, p.b_L, p.m_L, rng);
+      k.other = p.geometry;
+    }
+    k.bt_other = bulletTwin(k.other.get());
+    if (k.bt_other) k.bt_shape = bulletTwin(k.shape.get());
+    cases.push_back(std::move(k));
+  }
+  return cases;
+}
+
+/// A method's answer: the signed distance, or NaN where it has none.
+using Query = std::function<double(const Case&)>;
+
+double ours(const Case& k) {
+  fcl::DistanceRequestd request(true, true);
+  fcl::DistanceResultd result;
+  return fcl_superellipsoid::distance(k.shape.get(), k.X_WA, k.other.get(), k.X_WB, request,
+                                      result);
+}
+
+/// FCL's GJKSolver_libccd on the concrete types, with the exact support (gjk_support.h).
+double libccd(const Case& k) {
+  static const fcl::detail::GJKSolver_libccd<double> solver;
+  double d = NAN;
+  Vector3<double> p1, p2;
+  auto run = [&](const auto& other) {
+    try {
+      solver.shapeSignedDistance(*k.shape, k.X_WA, other, k.X_WB, &d, &p1, &p2);
+    } catch (const std::exception&) {
+      d = NAN;  // counted as a failure
+    }
+  };
+  const fcl::CollisionGeometryd* g = k.other.get();
+  if (auto* x = dynamic_cast<const Superellipsoidd*>(g))
+    run(*x);
+  else if (auto* x = dynamic_cast<const fcl::Ellipsoidd*>(g))
+    run(*x);
+  else if (auto* x = dynamic_cast<const fcl::Sphered*>(g))
+    run(*x);
+  else if (auto* x = dynamic_cast<const fcl::Boxd*>(g))
+    run(*x);
+  else if (auto* x = dynamic_cast<const fcl::Capsuled*>(g))
+    run(*x);
+  else if (auto* x = dynamic_cast<const fcl::Cylinderd*>(g))
+    run(*x);
+  else if (auto* x = dynamic_cast<const fcl::Coned*>(g))
+    run(*x);
+  else if (auto* x = dynamic_cast<const fcl::Convexd*>(g))
+    run(*x);
+  return d;
+}
+
+btTransform toBt(const fcl::Transform3d& X) {
+  btMatrix3x3 R;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) R[i][j] = btScalar(X.linear()(i, j));
+  }
+  return btTransform(R, support::toBt(X.translation()));
+}
+
+double bullet(const Case& k) {
+  btGjkEpaSolver2::sResults result;
+  const btVector3 guess = support::toBt(k.X_WB.translation() - k.X_WA.translation());
+  if (!btGjkEpaSolver2::SignedDistance(k.bt_shape.get(), toBt(k.X_WA), k.bt_other.get(),
+                                       toBt(k.X_WB), guess, result)) {
+    return NAN;
+  }
+  // btGjkEpaSolver2 measures the shapes without their collision margins (Bullet's own pipeline
+  // adds them); the sphere's and the capsule's radius is their margin.
+  return double(result.distance) - double(k.bt_shape->getMargin()) -
+         double(k.bt_other->getMargin());
+}
+
+struct Row {
+  std::string kind, method;
+  int bucket;
+  double us;         // median over repetitions of the mean time per query
+  double max_error;  // × size, against the construction (separated) or ours (overlapping)
+  double median_error;
+  int failures;  // NaN, non-finite, exceptions
+  int cases;
+};
+
+}  // namespace
+
+int runPairs(int per_kind, const std::string& csv) {
+  const std::vector<std::string> kinds = {"superellipsoid", "ellipsoid", "sphere", "box",
+                                          "capsule",        "cylinder",  "cone",   "convex",
+                                          "triangle",       "halfspace", "plane"};
+  std::printf(
+      "Shape pairs: the superellipsoid (ε1, ε2 in [0.1, 1.9], radii 10:1) against each kind, "
+      "%d random pairs × poses per kind, built with a known separation d (test_support/"
+      "pair_construction.h) in buckets d/size = -0.1, -0.01, 0.001, 0.01, 0.1, 1. Time: the "
+      "median of %d passes, per query. Error × size: against the construction where separated; "
+      "overlapping, against ours (checked against an independent reference in "
+      "test/fcl_glue/test_shape_pairs.cpp). libccd and Bullet see the exact support function.\n\n",
+      per_kind, kRepetitions);
+  std::mt19937 rng(2026);
+  std::vector<Row> rows;
+  for (const std::string& kind : kinds) {
+    const std::vector<Case> cases = makeCases(kind, per_kind, rng);
+    std::vector<double> reference(cases.size());
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      reference[i] = cases[i].d >= 0 ? cases[i].d : ours(cases[i]);
+    }
+    const bool has_libccd = kind != "triangle" && kind != "halfspace" && kind != "plane";
+    const bool has_bullet = cases.front().bt_other != nullptr;
+    std::vector<std::pair<std::string, Query>> methods = {{"ours", ours}};
+    if (has_libccd) methods.push_back({"fcl-libccd", libccd});
+    if (has_bullet) methods.push_back({"bullet", bullet});
+    for (const auto& [name, query] : methods) {
+      for (int bucket = 0; bucket < int(std::size(kBuckets)); ++bucket) {
+        std::vector<const Case*> group;
+        std::vector<double> truth;
+        for (std::size_t i = 0; i < cases.size(); ++i) {
+          if (cases[i].bucket == bucket) {
+            group.push_back(&cases[i]);
+            truth.push_back(reference[i]);
+          }
+        }
+        std::vector<double> answers(group.size()), passes;
+        for (int r = 0; r < kRepetitions; ++r) {
+          const Clock::time_point t0 = Clock::now();
+          for (std::size_t i = 0; i < group.size(); ++i) answers[i] = query(*group[i]);
+          passes.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+        }
+        std::sort(passes.begin(), passes.end());
+        Row row{kind, name, bucket, 1e6 * passes[passes.size() / 2] / double(group.size()),
+                0,    0,    0,      int(group.size())};
+        std::vector<double> errors;
+        for (std::size_t i = 0; i < group.size(); ++i) {
+          if (!std::isfinite(answers[i]) || std::abs(answers[i]) > 1e30) {
+            ++row.failures;
+            continue;
+          }
+          errors.push_back(std::abs(answers[i] - truth[i]) / group[i]->size);
+        }
+        if (!errors.empty()) {
+          std::sort(errors.begin(), errors.end());
+          row.max_error = errors.back();
+          row.median_error = errors[errors.size() / 2];
+        }
+        rows.push_back(row);
+      }
+    }
+  }
+  // The table: per kind and method, separated (d ≥ 0.001) and overlapping buckets.
+  std::printf(
+      "| pair | method | separated µs | max error | overlapping µs | max error | failures |"
+      " ours / method (time) |\n|---|---|---:|---:|---:|---:|---:|---:|\n");
+  std::map<std::pair<std::string, std::string>, std::array<double, 5>> summary;
+  for (const Row& r : rows) {
+    auto& s = summary[{r.kind, r.method}];
+    const bool separated = kBuckets[r.bucket] > 0;
+    s[separated ? 0 : 2] += r.us / (separated ? 4 : 2);
+    s[separated ? 1 : 3] = std::max(s[separated ? 1 : 3], r.max_error);
+    s[4] += r.failures;
+  }
+  for (const std::string& kind : kinds) {
+    const auto ours_row = summary[{kind, "ours"}];
+    for (const char* method : {"ours", "fcl-libccd", "bullet"}) {
+      const auto it = summary.find({kind, method});
+      if (it == summary.end()) continue;
+      const auto& s = it->second;
+      const double ratio = (ours_row[0] + ours_row[2]) / (s[0] + s[2]);
+      std::printf(
+          "| %s | %s | %.2f | %.1e | %.2f | %.1e | %d | %s |\n", kind.c_str(), method, s[0], s[1],
+          s[2], s[3], int(s[4]),
+          std::string(method) == "ours" ? "1" : (std::to_string(ratio).substr(0, 4)).c_str());
+    }
+  }
+  if (!csv.empty()) {
+    std::ofstream out(csv);
+    out << "kind,method,bucket,us_per_query,max_error,median_error,failures,cases\n";
+    for (const Row& r : rows) {
+      out << r.kind << ',' << r.method << ',' << kBuckets[r.bucket] << ',' << r.us << ','
+          << r.max_error << ',' << r.median_error << ',' << r.failures << ',' << r.cases << '\n';
+    }
+    std::printf("\n(every bucket: %s)\n", csv.c_str());
+  }
+  return 0;
+}
+
+}  // namespace bench
+}  // namespace fcl_superellipsoid

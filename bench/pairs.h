@@ -1,0 +1,18 @@
+#ifndef FCL_SUPERELLIPSOID_BENCH_PAIRS_H
+#define FCL_SUPERELLIPSOID_BENCH_PAIRS_H
+
+#include <string>
+
+namespace fcl_superellipsoid {
+namespace bench {
+
+/// The superellipsoid against every FCL shape and another superellipsoid: our pair solvers
+/// (through the front end), FCL's GJKSolver_libccd and Bullet's btGjkEpaSolver2 with the exact
+/// support function, on the same pairs; time per query and error per separation bucket. Prints
+/// the table; writes every bucket's row to `csv` unless it is empty.
+int runPairs(int per_kind, const std::string& csv);
+
+}  // namespace bench
+}  // namespace fcl_superellipsoid
+
+#endif  // FCL_SUPERELLIPSOID_BENCH_PAIRS_H

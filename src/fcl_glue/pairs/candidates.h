@@ -1,0 +1,86 @@
+#ifndef FCL_SUPERELLIPSOID_SRC_FCL_GLUE_PAIRS_CANDIDATES_H
+#define FCL_SUPERELLIPSOID_SRC_FCL_GLUE_PAIRS_CANDIDATES_H
+
+// Internal: how the exact pairs with flat or round features (polytope_pair, round_pair, and the
+// capsule's hand-over) certify their separated answers and fall back to libccd.
+//
+// A candidate is a pair of real surface points, on_shape and on_other: its distance is an upper
+// bound of the shapes' distance. Along its direction v = (on_other − on_shape)/|…| the support
+// functions give a lower bound, −h_A(v) − h_B(−v) (the gap between the two supporting planes).
+// When the two bounds meet, to 1e-12 × size plus the rounding of the points' coordinates, the
+// candidate is the answer (docs/math.md → "Shape pairs").
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "fcl_glue/pairs/libccd_pair.h"
+#include "fcl_glue/pairs/pair.h"
+
+namespace fcl_superellipsoid {
+namespace detail {
+
+/// The superellipsoid's support point along the world direction v.
+template <typename S>
+Vector3<S> shapeSupport(const Pair<S>& pair, const Vector3<S>& v) {
+  return *pair.X_WS * pair.shape->supportPoint(Vector3<S>(pair.X_WS->linear().transpose() * v));
+}
+
+/// Keeps the best candidate; `other_support(u)` is the other geometry's support function h_B.
+template <typename S, typename OtherSupport>
+class Candidates {
+ public:
+  Candidates(const Pair<S>& pair, OtherSupport other_support, S other_size)
+      : pair_(pair),
+        other_support_(other_support),
+        size_(std::max(pair.shape->size(), other_size)) {}
+
+  /// Offers a candidate; true once the best one is certified. A candidate that overlaps by
+  /// more than rounding is not one (its points do not bound a separated distance).
+  bool offer(const PairHit<S>& hit) {
+    if (!hit.on_shape.allFinite() || !hit.on_other.allFinite()) return false;
+    const S tolerance = S(1e-12) * size_ + S(64) * std::numeric_limits<S>::epsilon() *
+                                               (hit.on_shape.norm() + hit.on_other.norm() + size_);
+    if (!(hit.distance >= -tolerance)) return false;
+    if (has_best_ && !(hit.distance < best_.distance)) return false;
+    best_ = hit;
+    has_best_ = true;
+    const Vector3<S> gap = hit.on_other - hit.on_shape;
+    const Vector3<S> v = gap.norm() > S(0) ? Vector3<S>(gap.normalized()) : hit.normal;
+    const S lower = -v.dot(shapeSupport(pair_, v)) - other_support_(Vector3<S>(-v));
+    certified_ = hit.distance - lower <= tolerance;
+    return certified_;
+  }
+
+  /// The best candidate if it is certified.
+  std::optional<PairHit<S>> certified() const {
+    return certified_ ? std::optional<PairHit<S>>(best_) : std::nullopt;
+  }
+
+ private:
+  const Pair<S>& pair_;
+  OtherSupport other_support_;
+  S size_;
+  PairHit<S> best_{};
+  bool has_best_ = false;
+  bool certified_ = false;
+};
+
+/// libccd's answer, replaced by `exact(start)` (an std::optional<PairHit<S>>) where libccd finds
+/// the shapes separated or within its own error of touching (about 1e-5 × size; the exact answer
+/// then decides the sign) and the exact search certifies a candidate.
+template <typename S, typename Exact>
+std::optional<PairHit<S>> exactWhereSeparated(const Pair<S>& pair, S other_size, Exact exact) {
+  const std::optional<PairHit<S>> start = libccdHit(pair);
+  if (!start) return std::nullopt;
+  if (start->distance > -S(1e-3) * std::max(pair.shape->size(), other_size)) {
+    if (const std::optional<PairHit<S>> answer = exact(*start)) return answer;
+  }
+  return start;
+}
+
+}  // namespace detail
+}  // namespace fcl_superellipsoid
+
+#endif  // FCL_SUPERELLIPSOID_SRC_FCL_GLUE_PAIRS_CANDIDATES_H

@@ -1,0 +1,30 @@
+#include "fcl_glue/pairs/capsule_pair.h"
+
+#include <fcl/geometry/shape/capsule.h>
+
+#include "fcl_glue/pairs/libccd_pair.h"
+#include "fcl_glue/pairs/segment_search.h"
+
+namespace fcl_superellipsoid {
+namespace detail {
+template <typename S>
+std::optional<PairHit<S>> capsuleHit(const Pair<S>& pair) {
+  const auto* capsule = dynamic_cast<const fcl::Capsule<S>*>(pair.other);
+  if (capsule == nullptr) return std::nullopt;
+  const Vector3<S> half_axis = pair.X_WO->linear().col(2) * (capsule->lz / 2);
+  const Vector3<S> centre = pair.X_WO->translation();
+  const SegmentMinimum<S> m = nearestOnSegment(
+      *pair.shape, *pair.X_WS, Vector3<S>(centre - half_axis), Vector3<S>(centre + half_axis));
+  if (!(m.at.distance > S(0))) return libccdHit(pair);  // the axis penetrates the shape
+  return PairHit<S>{m.at.distance - capsule->radius,
+                    Vector3<S>(m.point - capsule->radius * m.at.normal), m.at.nearest_point,
+                    m.at.normal, -1};
+}
+
+#define FSE_INSTANTIATE_CAPSULE_HIT(S) \
+  template std::optional<PairHit<S>> capsuleHit(const Pair<S>&);
+FSE_INSTANTIATE_CAPSULE_HIT(float)
+FSE_INSTANTIATE_CAPSULE_HIT(double)
+
+}  // namespace detail
+}  // namespace fcl_superellipsoid

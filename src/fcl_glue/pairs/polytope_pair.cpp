@@ -1,0 +1,183 @@
+#include "fcl_glue/pairs/polytope_pair.h"
+
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/convex.h>
+#include <fcl/geometry/shape/triangle_p.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "fcl_glue/pairs/candidates.h"
+#include "fcl_glue/pairs/segment_search.h"
+
+namespace fcl_superellipsoid {
+namespace detail {
+namespace {
+
+/// A polytope in world coordinates: vertices, faces as vertex loops with outward normals, and
+/// the edges of those loops.
+template <typename S>
+struct Polytope {
+  std::vector<Vector3<S>> vertices;
+  std::vector<std::vector<int>> faces;
+  std::vector<Vector3<S>> normals;  // outward, unit
+  std::vector<std::pair<int, int>> edges;
+  S extent = S(0);  // largest distance between the centroid and a vertex
+};
+
+/// Newell's normal of a loop (not normalised): its orientation follows the loop's.
+template <typename S>
+Vector3<S> loopNormal(const std::vector<Vector3<S>>& v, const std::vector<int>& loop) {
+  Vector3<S> n = Vector3<S>::Zero();
+  for (std::size_t k = 0; k < loop.size(); ++k) {
+    const Vector3<S>& p = v[loop[k]];
+    const Vector3<S>& q = v[loop[(k + 1) % loop.size()]];
+    n += Vector3<S>((p[1] - q[1]) * (p[2] + q[2]), (p[2] - q[2]) * (p[0] + q[0]),
+                    (p[0] - q[0]) * (p[1] + q[1]));
+  }
+  return n;
+}
+
+/// Fills normals (outward: away from the centroid; both sides for a flat polytope), edges and
+/// extent from vertices and faces.
+template <typename S>
+void finish(Polytope<S>& p) {
+  Vector3<S> centroid = Vector3<S>::Zero();
+  for (const Vector3<S>& v : p.vertices) centroid += v;
+  centroid /= S(p.vertices.size());
+  for (const Vector3<S>& v : p.vertices) p.extent = std::max(p.extent, (v - centroid).norm());
+  std::set<std::pair<int, int>> edges;
+  std::vector<std::vector<int>> back_faces;  // the other side of a flat polytope's faces
+  std::vector<Vector3<S>> back_normals;
+  for (const std::vector<int>& loop : p.faces) {
+    const Vector3<S> n = loopNormal(p.vertices, loop).normalized();
+    const S side = n.dot(p.vertices[loop[0]] - centroid);
+    if (std::abs(side) <= S(1e-9) * p.extent) {  // flat (a triangle): the face is both sides
+      p.normals.push_back(n);
+      back_faces.push_back(loop);
+      back_normals.push_back(-n);
+    } else {
+      p.normals.push_back(side > 0 ? n : Vector3<S>(-n));
+    }
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const int i = loop[k], j = loop[(k + 1) % loop.size()];
+      edges.insert({std::min(i, j), std::max(i, j)});
+    }
+  }
+  p.faces.insert(p.faces.end(), back_faces.begin(), back_faces.end());
+  p.normals.insert(p.normals.end(), back_normals.begin(), back_normals.end());
+  p.edges.assign(edges.begin(), edges.end());
+}
+
+template <typename S>
+std::optional<Polytope<S>> polytopeOf(const fcl::CollisionGeometry<S>* other,
+                                      const fcl::Transform3<S>& X) {
+  Polytope<S> p;
+  if (const auto* box = dynamic_cast<const fcl::Box<S>*>(other)) {
+    const Vector3<S> h = box->side / 2;
+    for (int i = 0; i < 8; ++i) {
+      p.vertices.push_back(
+          X * Vector3<S>((i & 1) ? h[0] : -h[0], (i & 2) ? h[1] : -h[1], (i & 4) ? h[2] : -h[2]));
+    }
+    p.faces = {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}};
+  } else if (const auto* convex = dynamic_cast<const fcl::Convex<S>*>(other)) {
+    for (const Vector3<S>& v : convex->getVertices()) p.vertices.push_back(X * v);
+    const std::vector<int>& list = convex->getFaces();
+    for (std::size_t k = 0, f = 0;
+         f < static_cast<std::size_t>(convex->getFaceCount()) && k < list.size(); ++f) {
+      const int n = list[k];
+      p.faces.emplace_back(list.begin() + k + 1, list.begin() + k + 1 + n);
+      k += n + 1;
+    }
+  } else if (const auto* t = dynamic_cast<const fcl::TriangleP<S>*>(other)) {
+    p.vertices = {X * t->a, X * t->b, X * t->c};
+    p.faces = {{0, 1, 2}};
+  } else {
+    return std::nullopt;
+  }
+  finish(p);
+  return p;
+}
+
+/// Whether x (on the face's plane) lies inside the face's loop.
+template <typename S>
+bool insideFace(const Polytope<S>& p, const std::vector<int>& loop, const Vector3<S>& x) {
+  const Vector3<S> n = loopNormal(p.vertices, loop);
+  for (std::size_t k = 0; k < loop.size(); ++k) {
+    const Vector3<S>& a = p.vertices[loop[k]];
+    const Vector3<S>& b = p.vertices[loop[(k + 1) % loop.size()]];
+    if ((b - a).cross(x - a).dot(n) < S(0)) return false;
+  }
+  return true;
+}
+
+/// The exact answer for separated shapes, if a candidate is certified.
+template <typename S>
+std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Polytope<S>& p,
+                                         const Vector3<S>& normal) {
+  // The polytope's vertices near its support along −normal span the candidate features.
+  const S margin = S(1e-3) * p.extent;
+  S best_support = -std::numeric_limits<S>::infinity();
+  for (const Vector3<S>& w : p.vertices) best_support = std::max(best_support, -normal.dot(w));
+  std::vector<bool> near(p.vertices.size());
+  for (std::size_t i = 0; i < p.vertices.size(); ++i) {
+    near[i] = -normal.dot(p.vertices[i]) >= best_support - margin;
+  }
+  auto support = [&p](const Vector3<S>& u) {
+    S h = -std::numeric_limits<S>::infinity();
+    for (const Vector3<S>& w : p.vertices) h = std::max(h, u.dot(w));
+    return h;
+  };
+  Candidates<S, decltype(support)> candidates(pair, support, p.extent);
+  // Faces: every vertex of the loop near the support.
+  for (std::size_t f = 0; f < p.faces.size(); ++f) {
+    const std::vector<int>& loop = p.faces[f];
+    if (!std::all_of(loop.begin(), loop.end(), [&](int i) { return near[i]; })) continue;
+    const Vector3<S>& n = p.normals[f];
+    const Vector3<S> a = shapeSupport(pair, Vector3<S>(-n));
+    const S d = n.dot(a) - n.dot(p.vertices[loop[0]]);
+    const Vector3<S> b = a - d * n;
+    if (insideFace(p, loop, b) && candidates.offer({d, b, a, Vector3<S>(-n), -1}))
+      return candidates.certified();
+  }
+  // Edges with both ends near.
+  for (const auto& [i, j] : p.edges) {
+    if (!near[i] || !near[j]) continue;
+    const SegmentMinimum<S> m =
+        nearestOnSegment(*pair.shape, *pair.X_WS, p.vertices[i], p.vertices[j]);
+    if (candidates.offer({m.at.distance, m.point, m.at.nearest_point, m.at.normal, -1}))
+      return candidates.certified();
+  }
+  // Vertices.
+  for (std::size_t i = 0; i < p.vertices.size(); ++i) {
+    if (!near[i]) continue;
+    const PointDistanceResult<S> r =
+        pointDistance(*pair.shape, *pair.X_WS, p.vertices[i], pair.shape->queryOptions());
+    if (candidates.offer({r.distance, p.vertices[i], r.nearest_point, r.normal, -1}))
+      return candidates.certified();
+  }
+  return candidates.certified();
+}
+
+}  // namespace
+
+template <typename S>
+std::optional<PairHit<S>> polytopeHit(const Pair<S>& pair) {
+  const std::optional<Polytope<S>> p = polytopeOf(pair.other, *pair.X_WO);
+  if (!p) return std::nullopt;
+  return exactWhereSeparated(pair, p->extent, [&](const PairHit<S>& start) {
+    return exactSeparated(pair, *p, start.normal);
+  });
+}
+
+#define FSE_INSTANTIATE_POLYTOPE_HIT(S) \
+  template std::optional<PairHit<S>> polytopeHit(const Pair<S>&);
+FSE_INSTANTIATE_POLYTOPE_HIT(float)
+FSE_INSTANTIATE_POLYTOPE_HIT(double)
+
+}  // namespace detail
+}  // namespace fcl_superellipsoid

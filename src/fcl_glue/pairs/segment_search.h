@@ -1,0 +1,85 @@
+#ifndef FCL_SUPERELLIPSOID_SRC_FCL_GLUE_PAIRS_SEGMENT_SEARCH_H
+#define FCL_SUPERELLIPSOID_SRC_FCL_GLUE_PAIRS_SEGMENT_SEARCH_H
+
+// Internal: one-dimensional searches of the exact pairs.
+//
+// stationaryPoint: where a derivative changes sign inside a bracket, by regula falsi (Illinois)
+// with a bisection every fourth step, to a bracket a few ulps wide.
+//
+// nearestOnSegment: the point of a segment nearest to the superellipsoid (least signed
+// distance), for the capsule's axis and a polytope's edges. The signed distance to a convex set
+// is convex, so along p(t) = p0 + t·(p1 − p0) it has one minimum; its derivative is
+// n(t)·(p1 − p0), with n(t) the surface normal at p(t)'s nearest point (exact from the point
+// solver).
+
+#include <limits>
+
+#include "fcl_superellipsoid/point_distance.h"
+
+namespace fcl_superellipsoid {
+namespace detail {
+
+/// A sample of a search: the parameter, the derivative there, and what was computed with it.
+template <typename S, typename Payload>
+struct Sample {
+  S x;
+  S derivative;
+  Payload payload;
+};
+
+/// The sample where `at(x)` (returning a Sample) has a derivative that changes sign between lo
+/// (negative) and hi (positive); the end with the smaller derivative magnitude if the bracket
+/// closes first.
+template <typename S, typename Payload, typename At>
+Sample<S, Payload> stationaryPoint(At at, Sample<S, Payload> lo, Sample<S, Payload> hi) {
+  S d_lo = lo.derivative, d_hi = hi.derivative;  // Illinois weights
+  int last = 0;                                  // the end moved last (−1 low, +1 high)
+  const S width =
+      S(4) * std::numeric_limits<S>::epsilon() * (S(1) + std::abs(lo.x) + std::abs(hi.x));
+  for (int it = 0; it < 200 && hi.x - lo.x > width; ++it) {
+    S x = it % 4 == 3 ? S(0.5) * (lo.x + hi.x) : lo.x + (hi.x - lo.x) * d_lo / (d_lo - d_hi);
+    if (!(x > lo.x && x < hi.x)) x = S(0.5) * (lo.x + hi.x);
+    const Sample<S, Payload> mid = at(x);
+    if (mid.derivative == S(0)) return mid;
+    if (mid.derivative < S(0)) {
+      lo = mid;
+      d_lo = mid.derivative;
+      if (last == -1) d_hi *= S(0.5);
+      last = -1;
+    } else {
+      hi = mid;
+      d_hi = mid.derivative;
+      if (last == 1) d_lo *= S(0.5);
+      last = 1;
+    }
+  }
+  return -lo.derivative <= hi.derivative ? lo : hi;
+}
+
+template <typename S>
+struct SegmentMinimum {
+  S t;                        // in [0, 1]
+  Vector3<S> point;           // p(t), world
+  PointDistanceResult<S> at;  // the point query at p(t), world
+};
+
+template <typename S>
+SegmentMinimum<S> nearestOnSegment(const Superellipsoid<S>& shape, const fcl::Transform3<S>& X_WS,
+                                   const Vector3<S>& p0, const Vector3<S>& p1) {
+  const Vector3<S> e = p1 - p0;
+  const DistanceOptions<S>& options = shape.queryOptions();
+  auto at = [&](S t) {
+    const Vector3<S> p = p0 + t * e;
+    const PointDistanceResult<S> r = pointDistance(shape, X_WS, p, options);
+    return Sample<S, SegmentMinimum<S>>{t, r.normal.dot(e), {t, p, r}};
+  };
+  const auto lo = at(S(0)), hi = at(S(1));
+  if (!(lo.derivative < S(0))) return lo.payload;
+  if (!(hi.derivative > S(0))) return hi.payload;
+  return stationaryPoint<S>(at, lo, hi).payload;
+}
+
+}  // namespace detail
+}  // namespace fcl_superellipsoid
+
+#endif  // FCL_SUPERELLIPSOID_SRC_FCL_GLUE_PAIRS_SEGMENT_SEARCH_H
