@@ -7,6 +7,9 @@ Reads OUT_DIR/results.json (and OUT_DIR/scaling.csv if present) and writes
   mesh_resolution.png   error and time of FCL's mesh and convex polytope against vertices,
                         with our Exact solver and the paper's method as reference lines
   scaling.png           time per vertex against point-cloud size
+  pairs.png             (from OUT_DIR/pairs.csv, fse_bench --pairs) the superellipsoid against
+                        each FCL shape: error against time per query of ours, FCL's libccd and
+                        Bullet, one panel per partner, a point per separation bucket
 Needs Debian's python3-matplotlib (scripts/install-deps.sh --bench installs it).
 """
 import csv
@@ -17,6 +20,7 @@ import sys
 from collections import defaultdict
 
 import matplotlib
+import matplotlib.ticker
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -145,6 +149,39 @@ def plot_scaling(csv_path, path):
     fig.savefig(path, dpi=110)
 
 
+PAIR_STYLE = {"ours": ("tab:green", "o"), "fcl-libccd": ("tab:purple", "v"),
+              "bullet": ("tab:brown", "X")}
+
+
+def plot_pairs(csv_path, path):
+    """One panel per partner kind: max error × size against µs per query, per bucket."""
+    rows = defaultdict(list)
+    with open(csv_path, newline="") as f:
+        for r in csv.DictReader(f):
+            rows[r["kind"]].append(r)
+    kinds = list(rows)
+    cols = 4
+    fig, axes = plt.subplots((len(kinds) + cols - 1) // cols, cols, figsize=(15, 3.3 * math.ceil(len(kinds) / cols)))
+    for ax, kind in zip(axes.flat, kinds):
+        for method, (colour, marker) in PAIR_STYLE.items():
+            for separated in (True, False):
+                pts = [(float(r["us_per_query"]), max(float(r["max_error"]), FLOOR))
+                       for r in rows[kind] if r["method"] == method
+                       and (float(r["bucket"]) > 0) == separated
+                       and not math.isnan(float(r["max_error"]))]
+                if pts:
+                    ax.scatter([p[0] for p in pts], [p[1] for p in pts], color=colour,
+                               marker=marker, facecolors=colour if separated else "none",
+                               label=f"{method}, {'separated' if separated else 'overlapping'}")
+        loglog(ax, "time per query [µs]", "max error × size", kind)
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+        ax.legend(fontsize=6)
+    for ax in list(axes.flat)[len(kinds):]:
+        ax.axis("off")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
@@ -162,6 +199,10 @@ def main():
     if os.path.exists(scaling):
         plot_scaling(scaling, os.path.join(out, "scaling.png"))
         written.append("scaling.png")
+    pairs = os.path.join(out, "pairs.csv")
+    if os.path.exists(pairs):
+        plot_pairs(pairs, os.path.join(out, "pairs.png"))
+        written.append("pairs.png")
     print(f"Plots written to {out}/: {', '.join(written) if written else 'nothing to plot'}")
 
 

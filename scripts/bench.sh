@@ -6,6 +6,9 @@
 #   scripts/bench.sh --full     everything (about 20 minutes on 2 cores): fse_bench's full run, the
 #                               micro-benchmarks, the culling study and the aspect sweep; writes
 #                               docs/benchmark.md, docs/bench/*.png and the README's headline block
+#   scripts/bench.sh --pairs    the superellipsoid against every FCL shape, against FCL's libccd and
+#                               Bullet (a minute); writes docs/pairs.md's results, docs/bench/pairs.png
+#                               and the README's pairs block (also part of --full)
 #   scripts/bench.sh ARGS...    fse_bench with these arguments (--help lists them); results in out/
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,6 +17,20 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build --parallel "$(nproc)" --target fse_bench fse_microbench
 bench=build/bench
 if [ $# -eq 0 ]; then set -- --quick; fi
+pairs() {
+  mkdir -p out/pairs
+  git rev-parse --short HEAD > out/pairs/commit 2>/dev/null || echo unknown > out/pairs/commit
+  if [ -n "$(git status --porcelain --untracked-files=no -- . ':!docs' ':!README.md' 2>/dev/null)" ]; then
+    sed -i 's/$/ (with uncommitted changes)/' out/pairs/commit
+  fi
+  $bench/fse_bench --pairs 600 --out out/pairs | tee out/pairs/pairs.txt
+  /usr/bin/python3 bench/plot.py out/pairs
+  /usr/bin/python3 bench/pairs_doc.py out/pairs --docs docs --readme README.md
+}
+if [ "$1" = "--pairs" ]; then
+  pairs
+  exit 0
+fi
 if [ "$1" = "--full" ]; then
   rm -rf out && mkdir -p out
   $bench/fse_bench --out out
@@ -23,6 +40,7 @@ if [ "$1" = "--full" ]; then
   $bench/fse_bench --aspect-sweep | tee out/aspect_sweep.txt
   /usr/bin/python3 bench/plot.py out
   /usr/bin/python3 bench/benchmark_doc.py out --docs docs --readme README.md
+  pairs
   exit 0
 fi
 $bench/fse_bench "$@"   # writes to out/ unless --out says otherwise

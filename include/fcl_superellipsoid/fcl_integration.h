@@ -33,12 +33,16 @@
 /// diagnostics.h.
 ///
 /// Pairs: Superellipsoid vs fcl::BVHModel<BV> for every BV type (triangle meshes and point
-/// clouds: the model's vertices are the query points, paper §3), and vs fcl::Sphere (a vertex
-/// with a radius). Other pairs are refused with FCL's warning.
+/// clouds: the model's vertices are the query points, paper §3), and vs every FCL shape and
+/// another Superellipsoid (Sphere, Ellipsoid, Halfspace, Plane, Capsule, Box, Convex, TriangleP,
+/// Cylinder, Cone): one hit per pair, exact where the library has its own solver, libccd with
+/// the exact support function (gjk_support.h) where shapes with flat faces overlap. Their
+/// conventions are below and in docs/pairs.md. A geometry the library does not know is refused
+/// with FCL's warning.
 ///
-/// Conventions, for the front end and the table entries alike:
-/// - distance: the minimum signed distance over the vertices (Sphere: centre distance minus
-///   radius), computed with the shape's queryOptions(). b1/b2 name the vertex index on the
+/// Conventions of the mesh pairs, for the front end and the table entries alike:
+/// - distance: the minimum signed distance over the vertices, computed with the shape's
+///   queryOptions(). b1/b2 name the vertex index on the
 ///   mesh side and fcl::DistanceResult::NONE on the shape side; nearest_points (if
 ///   request.enable_nearest_points) are in world coordinates: the vertex and its nearest
 ///   surface point. If a vertex penetrates and request.enable_signed_distance is false, the
@@ -52,6 +56,13 @@
 ///   distance into a collide() with num_max_contacts = 1; that returns the deepest vertex, so
 ///   the depth is the same exact value, but FCL then sets both nearest points to the
 ///   contact's pos (the vertex). The front end reports the vertex and its surface point.
+///
+/// Conventions of the shape pairs:
+/// - distance: the signed distance (overlapping: −(the shortest separating translation)), or −1
+///   when they overlap and request.enable_signed_distance is false; nearest_points (world, the
+///   caller's order) the two witnesses; b1 = b2 = fcl::DistanceResult::NONE.
+/// - collide: one fcl::Contact when they overlap: pos halfway between the witnesses, normal the
+///   separating direction from o1 to o2, penetration_depth = −(signed distance).
 
 #include <fcl/broadphase/default_broadphase_callbacks.h>
 #include <fcl/narrowphase/collision.h>
