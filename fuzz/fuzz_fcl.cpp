@@ -1,8 +1,17 @@
 // Fuzz target 3: the FCL front end and FCL's table entries (GJKSolver_libccd) on random pairs
-// and poses: the superellipsoid against a sphere, a mesh or a point cloud in every BV type,
-// both argument orders, float and double. No crash, finite results, and distance and collide
-// agree on the sign. docs/hardening.md → "Fuzzing".
+// and poses: the superellipsoid against every FCL shape, another superellipsoid, a mesh or a
+// point cloud in every BV type, both argument orders, float and double. No crash, finite results,
+// and distance and collide agree on the sign. docs/hardening.md → "Fuzzing".
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cone.h>
+#include <fcl/geometry/shape/convex.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/ellipsoid.h>
+#include <fcl/geometry/shape/halfspace.h>
+#include <fcl/geometry/shape/plane.h>
 #include <fcl/geometry/shape/sphere.h>
+#include <fcl/geometry/shape/triangle_p.h>
 
 #include <memory>
 #include <vector>
@@ -59,6 +68,71 @@ std::shared_ptr<fcl::CollisionGeometry<S>> makeMesh(FuzzedDataProvider& in, S si
   }
 }
 
+/// A point within `reach` of the origin.
+template <typename S>
+Vector3<S> anyPoint(FuzzedDataProvider& in, S reach) {
+  return reach * Vector3<S>(S(1) - S(2) * in.ConsumeProbability<S>(),
+                            S(1) - S(2) * in.ConsumeProbability<S>(),
+                            S(1) - S(2) * in.ConsumeProbability<S>());
+}
+
+/// One of FCL's shapes or another superellipsoid, sized around `size` (down to degenerate:
+/// FCL accepts zero lengths and collinear triangles); null for a superellipsoid refused with a
+/// named value.
+template <typename S>
+std::shared_ptr<fcl::CollisionGeometry<S>> makeShapePartner(FuzzedDataProvider& in, S size,
+                                                            int kind) {
+  auto length = [&] {
+    return size * fuzz::aroundOne<S>(in, 4) * S(in.ConsumeIntegralInRange<int>(0, 3) > 0);
+  };
+  switch (kind) {
+    case 0:
+      return std::make_shared<fcl::Sphere<S>>(size * fuzz::aroundOne<S>(in, 4));
+    case 1:
+      try {
+        return std::make_shared<Superellipsoid<S>>(
+            size * fuzz::aroundOne<S>(in, 4), size * fuzz::aroundOne<S>(in, 4),
+            size * fuzz::aroundOne<S>(in, 4), fuzz::anyExponent<S>(in), fuzz::anyExponent<S>(in));
+      } catch (const std::invalid_argument& e) {
+        fuzz::requireNamedValue(e);
+        return nullptr;
+      }
+    case 2:
+      return std::make_shared<fcl::Ellipsoid<S>>(size * fuzz::aroundOne<S>(in, 4),
+                                                 size * fuzz::aroundOne<S>(in, 4),
+                                                 size * fuzz::aroundOne<S>(in, 4));
+    case 3:
+    case 4: {
+      Vector3<S> n = anyPoint<S>(in, S(1));
+      if (!(n.norm() > S(1e-3))) n = Vector3<S>::UnitZ();
+      const S d = size * (S(4) - S(8) * in.ConsumeProbability<S>());
+      if (kind == 3) return std::make_shared<fcl::Halfspace<S>>(n, d);
+      return std::make_shared<fcl::Plane<S>>(n, d);
+    }
+    case 5:
+      return std::make_shared<fcl::Capsule<S>>(length(), length());
+    case 6:
+      return std::make_shared<fcl::Box<S>>(length(), length(), length());
+    case 7:
+      return std::make_shared<fcl::Cylinder<S>>(length(), length());
+    case 8:
+      return std::make_shared<fcl::Cone<S>>(length(), length());
+    case 9: {  // a tetrahedron, faces oriented outward
+      auto v = std::make_shared<std::vector<Vector3<S>>>();
+      const S l = length();
+      *v = {Vector3<S>(l, l, l), Vector3<S>(l, -l, -l), Vector3<S>(-l, l, -l),
+            Vector3<S>(-l, -l, l)};
+      for (auto& p : *v) p += anyPoint<S>(in, size / 4);
+      auto faces = std::make_shared<std::vector<int>>(
+          std::vector<int>{3, 0, 1, 2, 3, 0, 3, 1, 3, 0, 2, 3, 3, 1, 3, 2});
+      return std::make_shared<fcl::Convex<S>>(v, 4, faces);
+    }
+    default:
+      return std::make_shared<fcl::TriangleP<S>>(anyPoint<S>(in, size), anyPoint<S>(in, size),
+                                                 anyPoint<S>(in, size));
+  }
+}
+
 template <typename S>
 void run(FuzzedDataProvider& in) {
   std::shared_ptr<Superellipsoid<S>> shape;
@@ -72,12 +146,9 @@ void run(FuzzedDataProvider& in) {
   }
   const S size = shape->size();
   std::shared_ptr<fcl::CollisionGeometry<S>> partner;
-  if (in.ConsumeIntegralInRange<int>(0, 4) == 0) {
-    partner = std::make_shared<fcl::Sphere<S>>(size * fuzz::aroundOne<S>(in, 4));
-  } else {
-    partner = makeMesh<S>(in, size);
-    if (!partner) return;
-  }
+  const int kind = in.ConsumeIntegralInRange<int>(0, 13);
+  partner = kind <= 10 ? makeShapePartner<S>(in, size, kind) : makeMesh<S>(in, size);
+  if (!partner) return;
   const fcl::CollisionObject<S> o_shape(shape, fuzz::makePose<S>(in, S(2) * size));
   const fcl::CollisionObject<S> o_partner(partner, fuzz::makePose<S>(in, S(3) * size));
   const bool shape_first = in.ConsumeBool();

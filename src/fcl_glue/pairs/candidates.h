@@ -67,17 +67,19 @@ class Candidates {
   bool certified_ = false;
 };
 
-/// libccd's answer, replaced by `exact(start)` (an std::optional<PairHit<S>>) where libccd finds
-/// the shapes separated or within its own error of touching (about 1e-5 × size; the exact answer
-/// then decides the sign) and the exact search certifies a candidate.
-template <typename S, typename Exact>
-std::optional<PairHit<S>> exactWhereSeparated(const Pair<S>& pair, S other_size, Exact exact) {
+/// The pair's answer from libccd's start (libccd_pair.h): `separated(start)` (an
+/// std::optional<PairHit<S>>, certified or nothing) where libccd finds the shapes apart or within
+/// its own error of touching (about 1e-5 × size; the exact answer then decides the sign), else,
+/// or if nothing is certified, `overlap(start)` (a PairHit: depth_candidates.h).
+template <typename S, typename Separated, typename Overlap>
+std::optional<PairHit<S>> exactPair(const Pair<S>& pair, S other_size, Separated separated,
+                                    Overlap overlap) {
   const std::optional<PairHit<S>> start = libccdHit(pair);
   if (!start) return std::nullopt;
   if (start->distance > -S(1e-3) * std::max(pair.shape->size(), other_size)) {
-    if (const std::optional<PairHit<S>> answer = exact(*start)) return answer;
+    if (const std::optional<PairHit<S>> answer = separated(*start)) return answer;
   }
-  return start;
+  return overlap(*start);
 }
 
 }  // namespace detail

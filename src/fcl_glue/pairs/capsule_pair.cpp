@@ -2,6 +2,7 @@
 
 #include <fcl/geometry/shape/capsule.h>
 
+#include "fcl_glue/pairs/depth_candidates.h"
 #include "fcl_glue/pairs/libccd_pair.h"
 #include "fcl_glue/pairs/segment_search.h"
 
@@ -15,7 +16,23 @@ std::optional<PairHit<S>> capsuleHit(const Pair<S>& pair) {
   const Vector3<S> centre = pair.X_WO->translation();
   const SegmentMinimum<S> m = nearestOnSegment(
       *pair.shape, *pair.X_WS, Vector3<S>(centre - half_axis), Vector3<S>(centre + half_axis));
-  if (!(m.at.distance > S(0))) return libccdHit(pair);  // the axis penetrates the shape
+  if (!(m.at.distance > S(0))) {
+    // The axis penetrates the shape: the least F over the ends' escape directions, the axis's
+    // family of directions and MPR's normal (depth_candidates.h).
+    const Vector3<S> p0 = centre - half_axis, p1 = centre + half_axis;
+    const S radius = capsule->radius;
+    auto support = [&](const Vector3<S>& u) {
+      return std::max(u.dot(p0), u.dot(p1)) + radius * u.norm();
+    };
+    DepthCandidates<S, decltype(support)> depth(pair, support);
+    if (const std::optional<PairHit<S>> start = libccdHit(pair)) {
+      depth.offerDirection(start->normal);
+    }
+    depth.offerPoint(p0);
+    depth.offerPoint(p1);
+    depth.offerEdge(p0, p1);
+    return depth.refinedBest();
+  }
   return PairHit<S>{m.at.distance - capsule->radius,
                     Vector3<S>(m.point - capsule->radius * m.at.normal), m.at.nearest_point,
                     m.at.normal, -1};

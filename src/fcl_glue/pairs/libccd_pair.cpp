@@ -10,7 +10,6 @@
 #include <fcl/narrowphase/detail/gjk_solver_libccd.h>
 
 #include <cmath>
-#include <exception>
 
 #include "fcl_superellipsoid/gjk_support.h"
 
@@ -43,47 +42,44 @@ CcdObject<S> ccdObject(const fcl::TriangleP<S>& t, const fcl::Transform3<S>& X) 
 }
 
 /// The signed distance through libccd, as a hit (points in world coordinates), with the
-/// iteration limits and tolerances of a default GJKSolver_libccd.
+/// iteration limits and tolerances of a default GJKSolver_libccd: GJK where they are apart, MPR
+/// where they overlap. (Not libccd's polytope expansion, FCL's signed distance: it throws "origin
+/// outside the polytope" on some overlaps, and leaks its polytope when it does.)
 template <typename S, typename Other>
 PairHit<S> ccdHit(const Pair<S>& pair, const Other& other) {
   const fcl::detail::GJKSolver_libccd<S> solver;
   const CcdObject<S> a = ccdObject(*pair.shape, *pair.X_WS);
   const CcdObject<S> b = ccdObject(other, *pair.X_WO);
   S d = S(0);
-  Vector3<S> on_shape = pair.X_WS->translation(), on_other = pair.X_WO->translation();
-  bool answered = false;
-  try {
-    fcl::detail::GJKSignedDistance<S>(a.object, a.support, b.object, b.support,
-                                      solver.max_distance_iterations, solver.distance_tolerance, &d,
-                                      &on_shape, &on_other);
-    answered = std::isfinite(d) && on_shape.allFinite() && on_other.allFinite();
-  } catch (const std::exception&) {
-    // libccd's penetration algorithm gave up ("origin outside the polytope"): MPR below.
+  Vector3<S> on_shape, on_other;
+  if (fcl::detail::GJKDistance<S>(a.object, a.support, b.object, b.support,
+                                  solver.max_distance_iterations, solver.distance_tolerance, &d,
+                                  &on_shape, &on_other) &&
+      std::isfinite(d) && on_shape.allFinite() && on_other.allFinite() &&
+      (on_other - on_shape).norm() > S(0)) {
+    return {d, on_other, on_shape, Vector3<S>((on_other - on_shape).normalized()), -1};
   }
-  Vector3<S> normal = on_other - on_shape;  // separated: from the shape to the other
-  if (!answered || d < S(0)) {
-    Vector3<S> pos, n;
-    S depth = S(0);
-    if (fcl::detail::GJKCollide<S>(a.object, a.support, a.centre, b.object, b.support, b.centre,
-                                   solver.max_collision_iterations, solver.collision_tolerance,
-                                   &pos, &depth, &n) &&
-        n.allFinite() && std::isfinite(depth)) {
-      // MPR's normal points from the shape (the first object) to the other.
-      if (!answered) {
-        d = -depth;
-        on_shape = pos + S(0.5) * depth * n;
-        on_other = pos - S(0.5) * depth * n;
-      }
-      normal = n;
-    } else if (!answered) {
-      d = S(0);
-    }
+  Vector3<S> pos, n;
+  S depth = S(0);
+  const bool overlap =
+      fcl::detail::GJKCollide<S>(a.object, a.support, a.centre, b.object, b.support, b.centre,
+                                 solver.max_collision_iterations, solver.collision_tolerance, &pos,
+                                 &depth, &n) &&
+      pos.allFinite() && n.allFinite() && n.norm() > S(0) && std::isfinite(depth);
+  if (overlap) {
+    // MPR's normal points from the shape (the first object) to the other; the witnesses are
+    // its contact point moved half the depth each way.
+    n.normalize();
+    return {-depth, Vector3<S>(pos - S(0.5) * depth * n), Vector3<S>(pos + S(0.5) * depth * n), n,
+            -1};
   }
-  if (!(normal.norm() > S(0)) || !normal.allFinite()) {
-    normal = pair.X_WO->translation() - pair.X_WS->translation();
-    if (!(normal.norm() > S(0))) normal = Vector3<S>::UnitZ();
-  }
-  return {d, on_other, on_shape, normal.normalized(), -1};
+  // Touching (GJK finds no gap, MPR no overlap): distance 0 on the line of the centres.
+  Vector3<S> towards = pair.X_WO->translation() - pair.X_WS->translation();
+  if (!(towards.norm() > S(0))) towards = Vector3<S>::UnitZ();
+  towards.normalize();
+  const Vector3<S> p =
+      *pair.X_WS * pair.shape->supportPoint(Vector3<S>(pair.X_WS->linear().transpose() * towards));
+  return {S(0), p, p, towards, -1};
 }
 
 }  // namespace

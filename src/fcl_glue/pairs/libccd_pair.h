@@ -3,12 +3,11 @@
 
 // Internal: the superellipsoid against FCL's shapes with flat faces, edges or rims (fcl::Box,
 // Capsule, Cylinder, Cone, Convex, TriangleP) through libccd, with the shape's exact support
-// function (gjk_support.h): GJK's distance, libccd's penetration algorithm when they overlap,
-// in the iteration limits and tolerances of a default GJKSolver_libccd. Its accuracy is
-// libccd's (docs/fcl-notes.md → "libccd with the exact support"). The exact pairs start from
-// it and keep it where they have no certified answer: deep overlaps (candidates.h). An
-// exception from the penetration algorithm is caught and MPR's depth and normal answer
-// instead, so no query throws.
+// function (gjk_support.h): GJK's distance where they are apart, MPR's depth and normal where
+// they overlap, in the iteration limits and tolerances of a default GJKSolver_libccd. Its
+// accuracy is libccd's (docs/fcl-notes.md → "libccd with the exact support"). The pairs with
+// flat features start from it: its witness picks the features to try (candidates.h), its normal
+// is one of the overlap's candidate directions (depth_candidates.h).
 
 #include <optional>
 

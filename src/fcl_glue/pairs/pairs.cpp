@@ -1,7 +1,7 @@
 // The dispatcher: a superellipsoid pair goes to the pair kind that recognises the other
 // geometry: a mesh or point cloud (many contacts), or a shape (one hit, written here into FCL's
 // results); a pair that none recognises gets FCL's "not supported" warning. A new shape pair
-// kind is a file beside this one (docs/design.md → "Adding a pair") and one entry in shapeHit.
+// kind is a file beside this one (docs/design.md → "Adding a pair") and a case in shapeHit.
 
 #include "fcl_glue/pairs/pairs.h"
 
@@ -27,14 +27,38 @@ void warnUnsupported(const char* what, int node_type1, int node_type2) {
             << " and node type " << node_type2 << " is not supported\n";
 }
 
-/// The first shape pair kind's hit (each is std::nullopt for a geometry not its own).
+/// The shape pair kind's hit, chosen by the other geometry's node type (each kind checks the
+/// dynamic type too: a user's geometry may report any node type).
 template <typename S>
 std::optional<PairHit<S>> shapeHit(const Pair<S>& pair) {
-  for (auto kind : {&sphereHit<S>, &halfspaceHit<S>, &smoothHit<S>, &capsuleHit<S>, &polytopeHit<S>,
-                    &roundHit<S>}) {
-    if (std::optional<PairHit<S>> hit = kind(pair)) return hit;
+  switch (pair.other->getNodeType()) {
+    case fcl::GEOM_SPHERE:
+      return sphereHit(pair);
+    case fcl::GEOM_HALFSPACE:
+    case fcl::GEOM_PLANE:
+      return halfspaceHit(pair);
+    case fcl::GEOM_ELLIPSOID:
+    case fcl::BV_UNKNOWN:  // another superellipsoid
+      return smoothHit(pair);
+    case fcl::GEOM_CAPSULE:
+      return capsuleHit(pair);
+    case fcl::GEOM_BOX:
+    case fcl::GEOM_CONVEX:
+    case fcl::GEOM_TRIANGLE:
+      return polytopeHit(pair);
+    case fcl::GEOM_CYLINDER:
+    case fcl::GEOM_CONE:
+      return roundHit(pair);
+    default:
+      return std::nullopt;
   }
-  return std::nullopt;
+}
+
+/// FCL's BVH models (BV_AABB … BV_KDOP24 are contiguous in FCL's NODE_TYPE).
+template <typename S>
+bool isMesh(const Pair<S>& pair) {
+  const fcl::NODE_TYPE t = pair.other->getNodeType();
+  return t >= fcl::BV_AABB && t <= fcl::BV_KDOP24;
 }
 
 }  // namespace
@@ -54,7 +78,9 @@ S pairDistance(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf
   checkPose("superellipsoid distance", "of o2", tf2);
   const Pair<S> pair = makePair(o1, tf1, o2, tf2);
   if (pair.shape != nullptr) {
-    if (const std::optional<S> answer = meshDistance(pair, request, result)) return *answer;
+    if (isMesh(pair)) {
+      if (const std::optional<S> answer = meshDistance(pair, request, result)) return *answer;
+    }
     if (const std::optional<PairHit<S>> hit = shapeHit(pair)) {
       updateDistance(pair, *hit, request, result);
       return result.min_distance;
@@ -74,7 +100,7 @@ std::size_t pairCollide(const fcl::CollisionGeometry<S>* o1, const fcl::Transfor
   if (pair.shape != nullptr) {
     if (request.num_max_contacts <= result.numContacts()) return result.numContacts();
     const std::size_t room = request.num_max_contacts - result.numContacts();
-    if (meshCollide(pair, request, room, result)) return result.numContacts();
+    if (isMesh(pair) && meshCollide(pair, request, room, result)) return result.numContacts();
     if (const std::optional<PairHit<S>> hit = shapeHit(pair)) {
       // One contact where they overlap, halfway between the two surfaces.
       if (hit->distance < S(0)) {

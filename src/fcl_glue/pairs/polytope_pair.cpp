@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "fcl_glue/pairs/candidates.h"
+#include "fcl_glue/pairs/depth_candidates.h"
 #include "fcl_glue/pairs/segment_search.h"
 
 namespace fcl_superellipsoid {
@@ -27,6 +28,13 @@ struct Polytope {
   std::vector<Vector3<S>> normals;  // outward, unit
   std::vector<std::pair<int, int>> edges;
   S extent = S(0);  // largest distance between the centroid and a vertex
+
+  /// The support function h(u) = max over the vertices of u·w.
+  S support(const Vector3<S>& u) const {
+    S h = -std::numeric_limits<S>::infinity();
+    for (const Vector3<S>& w : vertices) h = std::max(h, u.dot(w));
+    return h;
+  }
 };
 
 /// Newell's normal of a loop (not normalised): its orientation follows the loop's.
@@ -127,11 +135,7 @@ std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Polytope<S>&
   for (std::size_t i = 0; i < p.vertices.size(); ++i) {
     near[i] = -normal.dot(p.vertices[i]) >= best_support - margin;
   }
-  auto support = [&p](const Vector3<S>& u) {
-    S h = -std::numeric_limits<S>::infinity();
-    for (const Vector3<S>& w : p.vertices) h = std::max(h, u.dot(w));
-    return h;
-  };
+  auto support = [&p](const Vector3<S>& u) { return p.support(u); };
   Candidates<S, decltype(support)> candidates(pair, support, p.extent);
   // Faces: every vertex of the loop near the support.
   for (std::size_t f = 0; f < p.faces.size(); ++f) {
@@ -163,15 +167,29 @@ std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Polytope<S>&
   return candidates.certified();
 }
 
+/// The overlap's depth: the least F over the faces' normals, the vertices' escape directions,
+/// the edges' families and MPR's normal (depth_candidates.h).
+template <typename S>
+PairHit<S> overlap(const Pair<S>& pair, const Polytope<S>& p, const PairHit<S>& start) {
+  auto support = [&p](const Vector3<S>& u) { return p.support(u); };
+  DepthCandidates<S, decltype(support)> depth(pair, support);
+  depth.offerDirection(start.normal);
+  for (const Vector3<S>& n : p.normals) depth.offerDirection(Vector3<S>(-n));
+  for (const Vector3<S>& w : p.vertices) depth.offerPoint(w);
+  for (const auto& [i, j] : p.edges) depth.offerEdge(p.vertices[i], p.vertices[j]);
+  return depth.refinedBest();
+}
+
 }  // namespace
 
 template <typename S>
 std::optional<PairHit<S>> polytopeHit(const Pair<S>& pair) {
   const std::optional<Polytope<S>> p = polytopeOf(pair.other, *pair.X_WO);
   if (!p) return std::nullopt;
-  return exactWhereSeparated(pair, p->extent, [&](const PairHit<S>& start) {
-    return exactSeparated(pair, *p, start.normal);
-  });
+  return exactPair(
+      pair, p->extent,
+      [&](const PairHit<S>& start) { return exactSeparated(pair, *p, start.normal); },
+      [&](const PairHit<S>& start) { return overlap(pair, *p, start); });
 }
 
 #define FSE_INSTANTIATE_POLYTOPE_HIT(S) \

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "fcl_glue/pairs/candidates.h"
+#include "fcl_glue/pairs/depth_candidates.h"
 #include "fcl_glue/pairs/segment_search.h"
 
 namespace fcl_superellipsoid {
@@ -31,6 +32,17 @@ struct Round {
   }
   Vector3<S> circle(S theta) const { return std::cos(theta) * e1 + std::sin(theta) * e2; }
   Vector3<S> circleTangent(S theta) const { return -std::sin(theta) * e1 + std::cos(theta) * e2; }
+  /// The side's outward unit normal m(θ) (the cone's ∝ 2h·c(θ) + r·z) and its derivative.
+  Vector3<S> sideNormal(S theta) const {
+    return cone ? Vector3<S>((2 * h * circle(theta) + r * z) / std::hypot(2 * h, r))
+                : circle(theta);
+  }
+  Vector3<S> sideNormalDerivative(S theta) const {
+    return cone ? Vector3<S>(2 * h * circleTangent(theta) / std::hypot(2 * h, r))
+                : circleTangent(theta);
+  }
+  /// Along a side normal m the support is m·anchor (+ r for the cylinder): the apex, the centre.
+  Vector3<S> sideAnchor() const { return cone ? Vector3<S>(t + h * z) : t; }
 };
 
 template <typename S>
@@ -102,18 +114,10 @@ std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Round<S>& b,
     struct Side {
       Vector3<S> v, a;
     };
-    const S length = std::hypot(2 * b.h, b.r);  // the cone's slant, for its normal
-    auto normalAt = [&](S theta) {              // the side's outward normal at angle θ
-      return b.cone ? Vector3<S>((2 * b.h * b.circle(theta) + b.r * b.z) / length)
-                    : b.circle(theta);
-    };
-    const Vector3<S> apex = b.t + b.h * b.z;
     auto at = [&](S theta) {
-      const Vector3<S> m = normalAt(theta);
+      const Vector3<S> m = b.sideNormal(theta);
       const Vector3<S> a = shapeSupport(pair, Vector3<S>(-m));
-      const Vector3<S> dm =
-          b.cone ? Vector3<S>(2 * b.h * b.circleTangent(theta) / length) : b.circleTangent(theta);
-      const S derivative = b.cone ? dm.dot(apex - a) : dm.dot(b.t - a);
+      const S derivative = b.sideNormalDerivative(theta).dot(b.sideAnchor() - a);
       return Sample<S, Side>{theta, derivative, {Vector3<S>(-m), a}};
     };
     if (const std::optional<Side> s = minimumAround<S, Side>(at, theta0)) {
@@ -143,19 +147,53 @@ std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Round<S>& b,
   return candidates.certified();
 }
 
+/// The overlap's depth: the least F over the flat ends' normals, the side's family of normals,
+/// points of the rims, the apex and MPR's normal (depth_candidates.h).
+template <typename S>
+PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& start) {
+  auto support = [&b](const Vector3<S>& u) { return b.support(u); };
+  DepthCandidates<S, decltype(support)> depth(pair, support);
+  depth.offerDirection(start.normal);
+  depth.offerDirection(Vector3<S>(b.z));  // the base (cone, cylinder): v = −n = z
+  if (!b.cone) depth.offerDirection(Vector3<S>(-b.z));
+  auto direction = [&](S theta) { return Vector3<S>(-b.sideNormal(theta)); };
+  auto value = [&](S theta) {
+    const Vector3<S> m = b.sideNormal(theta);
+    return (-m).dot(shapeSupport(pair, Vector3<S>(-m))) + b.support(m);
+  };
+  auto derivative = [&](S theta) {
+    const Vector3<S> m = b.sideNormal(theta);
+    return b.sideNormalDerivative(theta).dot(b.sideAnchor() - shapeSupport(pair, Vector3<S>(-m)));
+  };
+  depth.offerFamily(direction, value, derivative);
+  constexpr int kRimPoints = 12;
+  for (S side : {S(1), S(-1)}) {
+    if (b.cone && side > S(0)) continue;
+    for (int k = 0; k < kRimPoints; ++k) {
+      depth.offerPoint(
+          Vector3<S>(b.t + side * b.h * b.z + b.r * b.circle(S(2 * M_PI * k / kRimPoints))));
+    }
+  }
+  if (b.cone) depth.offerPoint(Vector3<S>(b.t + b.h * b.z));
+  return depth.refinedBest();
+}
+
 }  // namespace
 
 template <typename S>
 std::optional<PairHit<S>> roundHit(const Pair<S>& pair) {
   const std::optional<Round<S>> b = roundOf(pair.other, *pair.X_WO);
   if (!b) return std::nullopt;
-  return exactWhereSeparated(pair, std::hypot(b->r, b->h), [&](const PairHit<S>& start) {
-    // The features near libccd's witness; failing that (its witness can be off by more than the
-    // margin, far away), every feature.
-    const S extent = std::hypot(b->r, b->h);
-    if (auto hit = exactSeparated(pair, *b, start, S(1e-3) * extent)) return hit;
-    return exactSeparated(pair, *b, start, std::numeric_limits<S>::infinity());
-  });
+  const S extent = std::hypot(b->r, b->h);
+  return exactPair(
+      pair, extent,
+      [&](const PairHit<S>& start) {
+        // The features near libccd's witness; failing that (its witness can be off by more than
+        // the margin, far away), every feature.
+        if (auto hit = exactSeparated(pair, *b, start, S(1e-3) * extent)) return hit;
+        return exactSeparated(pair, *b, start, std::numeric_limits<S>::infinity());
+      },
+      [&](const PairHit<S>& start) { return overlap(pair, *b, start); });
 }
 
 #define FSE_INSTANTIATE_ROUND_HIT(S) template std::optional<PairHit<S>> roundHit(const Pair<S>&);

@@ -3,8 +3,9 @@
 
 // Internal: one-dimensional searches of the exact pairs.
 //
-// stationaryPoint: where a derivative changes sign inside a bracket, by regula falsi (Illinois)
-// with a bisection every fourth step, to a bracket a few ulps wide.
+// stationaryPoint: where a derivative changes sign inside a bracket, by regula falsi (Illinois),
+// with a bisection whenever three steps have not halved the bracket, until two iterates (or the
+// bracket) are a few ulps apart; the sample with the smallest derivative.
 //
 // nearestOnSegment: the point of a segment nearest to the superellipsoid (least signed
 // distance), for the capsule's axis and a polytope's edges. The signed distance to a convex set
@@ -36,11 +37,17 @@ Sample<S, Payload> stationaryPoint(At at, Sample<S, Payload> lo, Sample<S, Paylo
   int last = 0;                                  // the end moved last (−1 low, +1 high)
   const S width =
       S(4) * std::numeric_limits<S>::epsilon() * (S(1) + std::abs(lo.x) + std::abs(hi.x));
-  for (int it = 0; it < 200 && hi.x - lo.x > width; ++it) {
-    S x = it % 4 == 3 ? S(0.5) * (lo.x + hi.x) : lo.x + (hi.x - lo.x) * d_lo / (d_lo - d_hi);
+  Sample<S, Payload> best = -lo.derivative <= hi.derivative ? lo : hi;
+  S previous = std::numeric_limits<S>::quiet_NaN();
+  S block_span = hi.x - lo.x;  // the bracket three steps ago: it must have halved since
+  for (int it = 1; it <= 100 && hi.x - lo.x > width; ++it) {
+    const bool bisect = it % 3 == 0 && hi.x - lo.x > S(0.5) * block_span;
+    if (it % 3 == 0) block_span = hi.x - lo.x;
+    S x = bisect ? S(0.5) * (lo.x + hi.x) : lo.x + (hi.x - lo.x) * d_lo / (d_lo - d_hi);
     if (!(x > lo.x && x < hi.x)) x = S(0.5) * (lo.x + hi.x);
     const Sample<S, Payload> mid = at(x);
-    if (mid.derivative == S(0)) return mid;
+    if (std::abs(mid.derivative) < std::abs(best.derivative)) best = mid;
+    if (mid.derivative == S(0)) break;
     if (mid.derivative < S(0)) {
       lo = mid;
       d_lo = mid.derivative;
@@ -52,8 +59,11 @@ Sample<S, Payload> stationaryPoint(At at, Sample<S, Payload> lo, Sample<S, Paylo
       if (last == 1) d_lo *= S(0.5);
       last = 1;
     }
+    // Converged: the secant iterates no longer move.
+    if (std::abs(x - previous) <= width) break;
+    previous = x;
   }
-  return -lo.derivative <= hi.derivative ? lo : hi;
+  return best;
 }
 
 template <typename S>

@@ -1,0 +1,131 @@
+#ifndef FCL_SUPERELLIPSOID_SRC_FCL_GLUE_PAIRS_DEPTH_CANDIDATES_H
+#define FCL_SUPERELLIPSOID_SRC_FCL_GLUE_PAIRS_DEPTH_CANDIDATES_H
+
+// Internal: the penetration depth of the superellipsoid and a shape with flat faces, edges or
+// rims (polytope_pair, round_pair, the capsule's deep overlaps), as the least value of
+//   F(v) = h_A(v) + h_B(−v)
+// over candidate directions v (docs/math.md → "Shape pairs"). Every F(v) is a translation along
+// v that separates the shapes, so the least one found is never shallower than the true depth; it
+// is the depth when the candidates include the minimiser. They come from the other shape's
+// features, where F is smooth: a face's normal; a vertex's (or a rim point's) escape direction,
+// the outward normal at its nearest point on the superellipsoid (the point solver); an edge's or
+// a side's one-parameter family of directions, sampled and refined where the restricted F is
+// stationary (segment_search.h); and MPR's normal. A pattern search on the sphere then polishes
+// the best of them, where F's kinks (the other shape's supporting feature changes) leave the
+// minimiser between the families.
+
+#include <cmath>
+#include <limits>
+
+#include "fcl_glue/pairs/candidates.h"
+#include "fcl_glue/pairs/segment_search.h"
+
+namespace fcl_superellipsoid {
+namespace detail {
+
+template <typename S, typename OtherSupport>
+class DepthCandidates {
+ public:
+  DepthCandidates(const Pair<S>& pair, OtherSupport other_support)
+      : pair_(pair), other_support_(other_support) {}
+
+  /// F at the direction v (from the shape towards the other; any length).
+  S offerDirection(const Vector3<S>& direction) {
+    if (!direction.allFinite() || !(direction.norm() > S(0))) return kNone;
+    const Vector3<S> v = direction.normalized();
+    const Vector3<S> a = shapeSupport(pair_, v);
+    const S f = v.dot(a) + other_support_(Vector3<S>(-v));
+    if (!std::isfinite(f)) return kNone;
+    if (!has_best_ || f < f_) {
+      f_ = f;
+      v_ = v;
+      a_ = a;
+      has_best_ = true;
+    }
+    return f;
+  }
+
+  /// A point of the other shape (a vertex, the apex, a rim point): its escape direction.
+  void offerPoint(const Vector3<S>& w) {
+    const PointDistanceResult<S> r =
+        pointDistance(*pair_.shape, *pair_.X_WS, w, pair_.shape->queryOptions());
+    offerDirection(r.normal);
+  }
+
+  /// A one-parameter family of directions v(θ), θ ∈ [0, 2π), with value(θ) the function to
+  /// minimise over it and derivative(θ) its derivative: 12 samples, then the stationary point
+  /// bracketed around the best.
+  template <typename Direction, typename Value, typename Derivative>
+  void offerFamily(Direction direction, Value value, Derivative derivative) {
+    constexpr int kSamples = 12;
+    const S step = S(2 * M_PI / kSamples);
+    int best = 0;
+    S best_value = std::numeric_limits<S>::infinity();
+    for (int k = 0; k < kSamples; ++k) {
+      offerDirection(direction(k * step));
+      const S g = value(k * step);
+      if (g < best_value) {
+        best_value = g;
+        best = k;
+      }
+    }
+    auto at = [&](S theta) { return Sample<S, S>{theta, derivative(theta), theta}; };
+    const auto lo = at((best - 1) * step), hi = at((best + 1) * step);
+    if (lo.derivative < S(0) && hi.derivative > S(0)) {
+      offerDirection(direction(stationaryPoint<S>(at, lo, hi).payload));
+    }
+  }
+
+  /// An edge w0–w1: the directions v ⊥ the edge, over which the edge's support is v·w0, so the
+  /// function is h_A(v) − v·w0 with derivative v'·(a − w0).
+  void offerEdge(const Vector3<S>& w0, const Vector3<S>& w1) {
+    const Vector3<S> e = w1 - w0;
+    if (!(e.norm() > S(0))) return;
+    const Vector3<S> c1 = e.unitOrthogonal(), c2 = e.normalized().cross(c1);
+    auto direction = [&](S t) { return Vector3<S>(std::cos(t) * c1 + std::sin(t) * c2); };
+    auto value = [&](S t) {
+      const Vector3<S> v = direction(t);
+      return v.dot(shapeSupport(pair_, v) - w0);
+    };
+    auto derivative = [&](S t) {
+      const Vector3<S> v = direction(t), dv(-std::sin(t) * c1 + std::cos(t) * c2);
+      return dv.dot(shapeSupport(pair_, v) - w0);
+    };
+    offerFamily(direction, value, derivative);
+  }
+
+  /// F's minimum near the best direction so far: a pattern search on the sphere (16 directions,
+  /// the step halved from 0.1 rad to 1e-9 rad), which needs no derivative, since F has kinks
+  /// where the other shape's supporting feature changes. Then the best: distance −F, the shape's
+  /// support point, the other's witness moved back by the depth along v (so that
+  /// on_shape − on_other = depth·v).
+  PairHit<S> refinedBest() {
+    constexpr int kPolls = 16, kMovesPerStep = 64;
+    for (S step = S(0.1); has_best_ && step > S(1e-9); step *= S(0.5)) {
+      for (int moves = 0; moves < kMovesPerStep; ++moves) {
+        const Vector3<S> v = v_, t1 = v.unitOrthogonal(), t2 = v.cross(t1);
+        const S f = f_;
+        for (int k = 0; k < kPolls && !(f_ < f); ++k) {
+          const S angle = S(2 * M_PI) * S(k) / S(kPolls);
+          offerDirection(Vector3<S>(v + step * (std::cos(angle) * t1 + std::sin(angle) * t2)));
+        }
+        if (!(f_ < f)) break;
+      }
+    }
+    return {-f_, Vector3<S>(a_ - f_ * v_), a_, v_, -1};
+  }
+  bool found() const { return has_best_; }
+
+ private:
+  static constexpr S kNone = std::numeric_limits<S>::infinity();
+  const Pair<S>& pair_;
+  OtherSupport other_support_;
+  S f_ = S(0);
+  Vector3<S> v_ = Vector3<S>::UnitZ(), a_ = Vector3<S>::Zero();
+  bool has_best_ = false;
+};
+
+}  // namespace detail
+}  // namespace fcl_superellipsoid
+
+#endif  // FCL_SUPERELLIPSOID_SRC_FCL_GLUE_PAIRS_DEPTH_CANDIDATES_H
