@@ -245,8 +245,10 @@ int runPairs(int per_kind, const std::string& csv) {
       "median of %d passes, per query. Error × size: against the construction where separated; "
       "overlapping, against ours where ours is exact (the smooth shapes, sphere, halfspace, plane: "
       "checked against an independent reference in test/fcl_glue/test_shape_pairs.cpp); for the "
-      "others ours is libccd's answer when they overlap, and no error is given (nan). libccd and "
-      "Bullet see the exact support function.\n\n",
+      "others ours is a search over candidate directions without an independent reference here "
+      "(the tests check it is never deeper than the construction's overlap or a long-double "
+      "search's), and no error is given (nan). libccd and Bullet see the exact support "
+      "function.\n\n",
       per_kind, kRepetitions);
   std::mt19937 rng(2026);
   std::vector<Row> rows;
