@@ -174,7 +174,11 @@ def plot_pairs(csv_path, path):
                                marker=marker, facecolors=colour if separated else "none",
                                label=f"{method}, {'separated' if separated else 'overlapping'}")
         loglog(ax, "time per query [µs]", "max error × size", kind)
-        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+        lo, hi = ax.get_xlim()
+        if hi / lo > 10:  # a decade's ticks are labelled; within one, the minor ticks are
+            ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+        else:
+            ax.xaxis.set_minor_formatter(matplotlib.ticker.FormatStrFormatter("%.2g"))
         ax.legend(fontsize=6)
     for ax in list(axes.flat)[len(kinds):]:
         ax.axis("off")
