@@ -160,10 +160,17 @@ void run(FuzzedDataProvider& in) {
   fcl::DistanceRequest<S> request(in.ConsumeBool());
   request.enable_signed_distance = in.ConsumeBool();
   fcl::DistanceResult<S> distance;
-  if (through_fcl) {
-    fcl::distance(o1, o2, &solver, request, distance);
-  } else {
-    fcl_superellipsoid::distance(o1, o2, request, distance);
+  try {
+    if (through_fcl) {
+      fcl::distance(o1, o2, &solver, request, distance);
+    } else {
+      fcl_superellipsoid::distance(o1, o2, request, distance);
+    }
+  } catch (const std::invalid_argument& e) {
+    // A partner shape with a parameter out of range (aroundOne sometimes draws any scalar):
+    // refused, naming the value (docs/hardening.md → "Bad input").
+    fuzz::requireNamedValue(e);
+    return;
   }
   const S d = distance.min_distance;
   fuzz::require(std::isfinite(d), "distance not finite");
@@ -175,7 +182,7 @@ void run(FuzzedDataProvider& in) {
   fcl::CollisionRequest<S> crequest(std::size_t(in.ConsumeIntegralInRange<int>(1, 8)),
                                     in.ConsumeBool());
   fcl::CollisionResult<S> collision;
-  if (through_fcl) {
+  if (through_fcl) {  // (the partner passed distance's check: collide may not throw)
     fcl::collide(o1, o2, &solver, crequest, collision);
   } else {
     fcl_superellipsoid::collide(o1, o2, crequest, collision);

@@ -2,7 +2,14 @@
 // entry point, every kind of bad input, and what it gets. A refusal is std::invalid_argument
 // with "<where>: <requirement>, got <value>"; each test checks all three parts.
 
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cone.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/ellipsoid.h>
+#include <fcl/geometry/shape/halfspace.h>
 #include <fcl/geometry/shape/sphere.h>
+#include <fcl/geometry/shape/triangle_p.h>
 #include <gtest/gtest.h>
 
 #include <functional>
@@ -277,6 +284,45 @@ TYPED_TEST(BadInputTest, FclFrontEndAndTables) {
                 "fcl_superellipsoid::defaultCollisionFunction", "data must point to", "null");
   expectRefused([&] { defaultDistanceFunction<S>(&c, &d, nullptr, dist); },
                 "fcl_superellipsoid::defaultDistanceFunction", "data must point to", "null");
+}
+
+// Another shape with a parameter that is not finite, a negative length, or a coordinate beyond
+// max/16: refused by distance and collide, front end and FCL's call alike, naming the value.
+TYPED_TEST(BadInputTest, ShapePairPartners) {
+  using S = TypeParam;
+  const auto shape = std::make_shared<Superellipsoid<S>>(1, 1, 1, 1, 1);
+  const fcl::Transform3<S> I = fcl::Transform3<S>::Identity();
+  const S nan = TestFixture::nan, huge = std::numeric_limits<S>::max() / 2;
+  auto refuse = [&](const fcl::CollisionGeometry<S>& other, const std::string& requirement,
+                    const std::string& value) {
+    fcl::DistanceResult<S> dresult;
+    fcl::CollisionResult<S> cresult;
+    expectRefused(
+        [&] {
+          fcl_superellipsoid::distance<S>(shape.get(), I, &other, I, fcl::DistanceRequest<S>(),
+                                          dresult);
+        },
+        "superellipsoid distance", requirement, value);
+    expectRefused(
+        [&] {
+          fcl_superellipsoid::collide<S>(&other, I, shape.get(), I, fcl::CollisionRequest<S>(),
+                                         cresult);
+        },
+        "superellipsoid collide", requirement, value);
+    fcl::detail::GJKSolver_libccd<S> solver;
+    EXPECT_THROW(
+        fcl::distance(shape.get(), I, &other, I, &solver, fcl::DistanceRequest<S>(), dresult),
+        std::invalid_argument);
+  };
+  refuse(fcl::Capsule<S>(S(1), nan), "the other shape's lz must be finite", "nan");
+  refuse(fcl::Box<S>(S(1), S(-2), S(1)), "the other shape's side must be finite, >= 0", "-2");
+  refuse(fcl::Cylinder<S>(huge, S(1)), "the other shape's radius", "e+");
+  refuse(fcl::Cone<S>(S(1), std::numeric_limits<S>::infinity()), "the other shape's lz", "inf");
+  refuse(fcl::Sphere<S>(nan), "the other shape's radius", "nan");
+  refuse(fcl::Ellipsoid<S>(S(1), S(-1), S(1)), "the other shape's radii", "-1");
+  refuse(fcl::TriangleP<S>(Vector3<S>(0, 0, 0), Vector3<S>(nan, 0, 0), Vector3<S>(0, 1, 0)),
+         "the other shape's vertex b must be finite", "nan");
+  refuse(fcl::Halfspace<S>(Vector3<S>(0, 0, 1), huge), "the other shape's |d|", "e+");
 }
 
 }  // namespace

@@ -44,10 +44,11 @@ class Candidates {
                                                (hit.on_shape.norm() + hit.on_other.norm() + size_);
     if (!(hit.distance >= -tolerance)) return false;
     if (has_best_ && !(hit.distance < best_.distance)) return false;
-    best_ = hit;
-    has_best_ = true;
     const Vector3<S> gap = hit.on_other - hit.on_shape;
     const Vector3<S> v = gap.norm() > S(0) ? Vector3<S>(gap.normalized()) : hit.normal;
+    if (!v.allFinite() || !(v.norm() > S(0.5))) return false;  // no direction to certify along
+    best_ = hit;
+    has_best_ = true;
     const S lower = -v.dot(shapeSupport(pair_, v)) - other_support_(Vector3<S>(-v));
     certified_ = hit.distance - lower <= tolerance;
     return certified_;

@@ -5,10 +5,24 @@
 
 #include "fcl_glue/pairs/pairs.h"
 
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cone.h>
+#include <fcl/geometry/shape/convex.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/ellipsoid.h>
+#include <fcl/geometry/shape/halfspace.h>
+#include <fcl/geometry/shape/plane.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/geometry/shape/triangle_p.h>
+
+#include <cmath>
 #include <iostream>
 #include <limits>
+#include <string>
 
 #include "common/coordinate_range.h"
+#include "common/invalid_argument.h"
 #include "fcl_glue/pairs/capsule_pair.h"
 #include "fcl_glue/pairs/halfspace_pair.h"
 #include "fcl_glue/pairs/mesh_pair.h"
@@ -54,6 +68,57 @@ std::optional<PairHit<S>> shapeHit(const Pair<S>& pair) {
   }
 }
 
+/// Refuses another shape whose parameters are not finite, a negative length, or a length or
+/// coordinate beyond a sixteenth of the largest finite value (its features' coordinates, sums
+/// of a few of them, must stay finite; docs/hardening.md → "Bad input").
+template <typename S>
+void checkOther(const char* where, const fcl::CollisionGeometry<S>* other) {
+  const S limit = std::numeric_limits<S>::max() / 16;
+  auto length = [&](const char* name, S v) {
+    if (!(v >= S(0) && v <= limit)) {
+      throwInvalidArgument(
+          where, std::string("the other shape's ") + name + " must be finite, >= 0 and <= max/16",
+          v);
+    }
+  };
+  auto point = [&](const char* name, const Vector3<S>& p) {
+    if (!p.allFinite() || !(p.cwiseAbs().maxCoeff() <= limit)) {
+      throwInvalidArgument(
+          where,
+          std::string("the other shape's ") + name + " must be finite, each |coordinate| <= max/16",
+          p);
+    }
+  };
+  if (const auto* x = dynamic_cast<const fcl::Sphere<S>*>(other)) {
+    length("radius", x->radius);
+  } else if (const auto* x = dynamic_cast<const fcl::Ellipsoid<S>*>(other)) {
+    for (int i = 0; i < 3; ++i) length("radii", x->radii[i]);
+  } else if (const auto* x = dynamic_cast<const fcl::Box<S>*>(other)) {
+    for (int i = 0; i < 3; ++i) length("side", x->side[i]);
+  } else if (const auto* x = dynamic_cast<const fcl::Capsule<S>*>(other)) {
+    length("radius", x->radius);
+    length("lz", x->lz);
+  } else if (const auto* x = dynamic_cast<const fcl::Cylinder<S>*>(other)) {
+    length("radius", x->radius);
+    length("lz", x->lz);
+  } else if (const auto* x = dynamic_cast<const fcl::Cone<S>*>(other)) {
+    length("radius", x->radius);
+    length("lz", x->lz);
+  } else if (const auto* x = dynamic_cast<const fcl::Halfspace<S>*>(other)) {
+    point("normal n", x->n);
+    length("|d|", std::abs(x->d));
+  } else if (const auto* x = dynamic_cast<const fcl::Plane<S>*>(other)) {
+    point("normal n", x->n);
+    length("|d|", std::abs(x->d));
+  } else if (const auto* x = dynamic_cast<const fcl::Convex<S>*>(other)) {
+    for (const Vector3<S>& v : x->getVertices()) point("vertex", v);
+  } else if (const auto* x = dynamic_cast<const fcl::TriangleP<S>*>(other)) {
+    point("vertex a", x->a);
+    point("vertex b", x->b);
+    point("vertex c", x->c);
+  }
+}
+
 /// FCL's BVH models (BV_AABB … BV_KDOP24 are contiguous in FCL's NODE_TYPE).
 template <typename S>
 bool isMesh(const Pair<S>& pair) {
@@ -81,6 +146,7 @@ S pairDistance(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf
     if (isMesh(pair)) {
       if (const std::optional<S> answer = meshDistance(pair, request, result)) return *answer;
     }
+    if (!isMesh(pair)) checkOther("superellipsoid distance", pair.other);
     if (const std::optional<PairHit<S>> hit = shapeHit(pair)) {
       updateDistance(pair, *hit, request, result);
       return result.min_distance;
@@ -101,6 +167,7 @@ std::size_t pairCollide(const fcl::CollisionGeometry<S>* o1, const fcl::Transfor
     if (request.num_max_contacts <= result.numContacts()) return result.numContacts();
     const std::size_t room = request.num_max_contacts - result.numContacts();
     if (isMesh(pair) && meshCollide(pair, request, room, result)) return result.numContacts();
+    if (!isMesh(pair)) checkOther("superellipsoid collide", pair.other);
     if (const std::optional<PairHit<S>> hit = shapeHit(pair)) {
       // One contact where they overlap, halfway between the two surfaces.
       if (hit->distance < S(0)) {

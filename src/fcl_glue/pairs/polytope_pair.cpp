@@ -61,8 +61,16 @@ void finish(Polytope<S>& p) {
   std::set<std::pair<int, int>> edges;
   std::vector<std::vector<int>> back_faces;  // the other side of a flat polytope's faces
   std::vector<Vector3<S>> back_normals;
+  std::vector<std::vector<int>> faces;
   for (const std::vector<int>& loop : p.faces) {
-    const Vector3<S> n = loopNormal(p.vertices, loop).normalized();
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const int i = loop[k], j = loop[(k + 1) % loop.size()];
+      edges.insert({std::min(i, j), std::max(i, j)});
+    }
+    const Vector3<S> newell = loopNormal(p.vertices, loop);
+    if (!(newell.norm() > S(0)) || !newell.allFinite()) continue;  // a degenerate face: edges only
+    faces.push_back(loop);
+    const Vector3<S> n = newell.normalized();
     const S side = n.dot(p.vertices[loop[0]] - centroid);
     if (std::abs(side) <= S(1e-9) * p.extent) {  // flat (a triangle): the face is both sides
       p.normals.push_back(n);
@@ -71,11 +79,8 @@ void finish(Polytope<S>& p) {
     } else {
       p.normals.push_back(side > 0 ? n : Vector3<S>(-n));
     }
-    for (std::size_t k = 0; k < loop.size(); ++k) {
-      const int i = loop[k], j = loop[(k + 1) % loop.size()];
-      edges.insert({std::min(i, j), std::max(i, j)});
-    }
   }
+  p.faces = std::move(faces);
   p.faces.insert(p.faces.end(), back_faces.begin(), back_faces.end());
   p.normals.insert(p.normals.end(), back_normals.begin(), back_normals.end());
   p.edges.assign(edges.begin(), edges.end());

@@ -12,7 +12,7 @@ namespace {
 
 /// Newton iterations per start, and how many of the start directions are refined when the
 /// first run does not find the shapes separated.
-constexpr int kMaxIterations = 60;
+constexpr int kMaxIterations = 200;
 constexpr int kRefinedStarts = 4;
 /// Fibonacci-sphere directions added to the starts when the shapes overlap.
 constexpr int kSphereStarts = 32;

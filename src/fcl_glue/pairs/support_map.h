@@ -59,10 +59,15 @@ class SupportMap {
       // h(w) = ‖D·w‖ with D = diag(radii): ∇h = D²w/h, ∇²h = (D² − ∇h·∇hᵀ)/h.
       const Vector3<S> dw = radii_.cwiseProduct(w);
       local.value = dw.norm();
-      local.point = radii_.cwiseProduct(dw) / local.value;
-      local.hessian = (Eigen::Matrix<S, 3, 3>(radii_.cwiseProduct(radii_).asDiagonal()) -
-                       local.point * local.point.transpose()) /
-                      local.value;
+      if (local.value > S(0)) {
+        local.point = radii_.cwiseProduct(dw) / local.value;
+        local.hessian = (Eigen::Matrix<S, 3, 3>(radii_.cwiseProduct(radii_).asDiagonal()) -
+                         local.point * local.point.transpose()) /
+                        local.value;
+      } else {  // flat along w (a zero radius): the centre supports it
+        local.point.setZero();
+        local.hessian.setZero();
+      }
     }
     SupportEval<S> out;
     out.value = m * local.value + v.dot(X_.translation());
