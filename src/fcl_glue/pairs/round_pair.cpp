@@ -34,12 +34,14 @@ struct Round {
   Vector3<S> circleTangent(S theta) const { return -std::sin(theta) * e1 + std::cos(theta) * e2; }
   /// The side's outward unit normal m(θ) (the cone's ∝ 2h·c(θ) + r·z) and its derivative.
   Vector3<S> sideNormal(S theta) const {
-    return cone ? Vector3<S>((2 * h * circle(theta) + r * z) / std::hypot(2 * h, r))
-                : circle(theta);
+    const S slant = std::hypot(2 * h, r);  // 0 for a cone of no size: its side is a point
+    return cone && slant > S(0) ? Vector3<S>((2 * h * circle(theta) + r * z) / slant)
+                                : circle(theta);
   }
   Vector3<S> sideNormalDerivative(S theta) const {
-    return cone ? Vector3<S>(2 * h * circleTangent(theta) / std::hypot(2 * h, r))
-                : circleTangent(theta);
+    const S slant = std::hypot(2 * h, r);
+    return cone && slant > S(0) ? Vector3<S>(2 * h * circleTangent(theta) / slant)
+                                : circleTangent(theta);
   }
   /// Along a side normal m the support is m·anchor (+ r for the cylinder): the apex, the centre.
   Vector3<S> sideAnchor() const { return cone ? Vector3<S>(t + h * z) : t; }
