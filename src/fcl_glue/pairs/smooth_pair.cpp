@@ -42,12 +42,10 @@ std::array<Vector3<S>, 2> tangents(const Vector3<S>& v) {
 /// Newton's method for F on the unit sphere from v0, with a backtracking line search and the
 /// Riemannian Hessian shifted to positive definite where F is not locally convex.
 template <typename S>
-Probe<S> localMinimum(const SupportMap<S>& A, const SupportMap<S>& B, const Vector3<S>& v0,
-                      int& iterations) {
+Probe<S> localMinimum(const SupportMap<S>& A, const SupportMap<S>& B, const Vector3<S>& v0) {
   Probe<S> p = probe(A, B, Vector3<S>(v0.normalized()));
   const S eps = std::numeric_limits<S>::epsilon();
   for (int it = 0; it < kMaxIterations; ++it) {
-    ++iterations;
     const auto [t1, t2] = tangents(p.v);
     // Riemannian gradient and Hessian: P·∇F and P·∇²F·P − (v·∇F)·P, with v·∇F = F (F is
     // 1-homogeneous).
@@ -103,10 +101,9 @@ Vector3<S> sphereDirection(int i, int n) {
 
 template <typename S>
 SmoothPairAnswer<S> solveSmoothPair(const SupportMap<S>& A, const SupportMap<S>& B) {
-  int iterations = 0;
   const Vector3<S> centres = B.centre() - A.centre();
   const Vector3<S> first = centres.squaredNorm() > S(0) ? centres : Vector3<S>::UnitZ();
-  Probe<S> best = localMinimum(A, B, first, iterations);
+  Probe<S> best = localMinimum(A, B, first);
   if (!(best.f < S(0))) {
     // Not found separated: overlapping (or touching), where F may have several local minima.
     // Newton from the lowest of: both frames' axes, a lattice over the sphere, the first answer.
@@ -123,7 +120,7 @@ SmoothPairAnswer<S> solveSmoothPair(const SupportMap<S>& A, const SupportMap<S>&
     std::partial_sort(starts.begin(), starts.begin() + refined, starts.end(),
                       [](const Probe<S>& x, const Probe<S>& y) { return x.f < y.f; });
     for (int k = 0; k < refined; ++k) {
-      const Probe<S> p = localMinimum(A, B, starts[k].v, iterations);
+      const Probe<S> p = localMinimum(A, B, starts[k].v);
       if (p.f < best.f) best = p;
     }
   }
@@ -132,8 +129,6 @@ SmoothPairAnswer<S> solveSmoothPair(const SupportMap<S>& A, const SupportMap<S>&
   out.on_a = best.a;
   out.on_b = best.b;
   out.normal = best.v;
-  out.gap = out.distance > S(0) ? std::max(S(0), (best.b - best.a).norm() - out.distance) : S(0);
-  out.iterations = iterations;
   return out;
 }
 

@@ -28,8 +28,6 @@ struct SmoothPairAnswer {
   Vector3<S> on_a;    // A's witness ∇h_A(v*)
   Vector3<S> on_b;    // B's witness ∇h_B(−v*)
   Vector3<S> normal;  // v*: A's outward unit normal at on_a, towards B
-  S gap;              // separated: |on_b − on_a| − distance ≥ 0, the certificate; else 0
-  int iterations;     // Newton iterations, all starts
 };
 
 /// The hit if the other geometry is a Superellipsoid or an fcl::Ellipsoid; std::nullopt
