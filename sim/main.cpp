@@ -19,6 +19,7 @@
 
 #include "peer/bullet_cloth.h"
 #include "physics/cloth_simulation.h"
+#include "physics/rigid_simulation.h"
 #include "progress_bar.h"
 #include "report/measurements.h"
 #include "report/run_output.h"
@@ -100,6 +101,78 @@ RunSummary runModel(const Scene& scene, ContactModel model, const Options& optio
   return summarize(toString(model), sim.phases(), records);
 }
 
+/// The bodies at one moment as one OBJ file (each body's tessellation at its pose).
+void writeBodiesObj(const std::string& path, const RigidSimulation& sim) {
+  std::ofstream out(path);
+  out.precision(7);
+  int offset = 1;
+  for (const RigidBody& body : sim.bodies()) {
+    const fse::TriangleMesh<double> mesh = fse::tessellate(*body.shape, 162);
+    for (const auto& v : mesh.vertices) {
+      const Eigen::Vector3d w = body.toWorld(v);
+      out << "v " << w[0] << ' ' << w[1] << ' ' << w[2] << '\n';
+    }
+    for (const auto& t : mesh.triangles) {
+      out << "f " << t[0] + offset << ' ' << t[1] + offset << ' ' << t[2] + offset << '\n';
+    }
+    offset += int(mesh.vertices.size());
+  }
+  if (!out) throw std::runtime_error(path + ": cannot be written");
+}
+
+void writeStaticMeshObj(const std::string& path, const StaticMesh& mesh) {
+  std::ofstream out(path);
+  out.precision(9);
+  for (Eigen::Index i = 0; i < mesh.vertices.cols(); ++i) {
+    out << "v " << mesh.vertices(0, i) << ' ' << mesh.vertices(1, i) << ' ' << mesh.vertices(2, i)
+        << '\n';
+  }
+  for (const auto& t : mesh.triangles) {
+    out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
+  }
+  if (!out) throw std::runtime_error(path + ": cannot be written");
+}
+
+std::string bodiesFrameName(double t) {
+  char name[32];
+  std::snprintf(name, sizeof name, "bodies_%07.3f.obj", t);
+  return name;
+}
+
+RunSummary runRigidModel(const Scene& scene, ContactModel model, const Options& options, long steps,
+                         const fs::path& dir, fse::support::ProgressBar& progress) {
+  SimulationOptions contact;
+  contact.model = model;
+  contact.threads = options.threads;
+  RigidSimulation sim(scene, contact);
+  fs::create_directories(dir / "frames");
+  const std::vector<long> snapshot = snapshotSteps(options.snapshots, scene);
+  const double tolerance = scene.rigid_contact ? scene.rigid_contact->tolerance : 0.0;
+  std::vector<StepRecord> records;
+  records.reserve(std::size_t(steps));
+  if (std::count(snapshot.begin(), snapshot.end(), 0L)) {
+    writeBodiesObj((dir / "frames" / bodiesFrameName(0)).string(), sim);
+  }
+  for (long s = 1; s <= steps; ++s) {
+    sim.step();
+    // Measured on the exact surfaces, outside the timed step.
+    StepRecord r;
+    r.time = sim.time();
+    r.seconds = sim.lastStepTimes();
+    r.max_penetration = std::max(0.0, -sim.leastDistance(tolerance));
+    r.contacts = sim.activeContactCount();
+    r.energy = sim.energy();
+    r.max_speed = sim.maxSpeed();
+    records.push_back(r);
+    if (std::count(snapshot.begin(), snapshot.end(), s)) {
+      writeBodiesObj((dir / "frames" / bodiesFrameName(sim.time())).string(), sim);
+    }
+    progress.advance(1, std::string(toString(model)) + ", t = " + std::to_string(sim.time()));
+  }
+  writeStepsCsv((dir / "steps.csv").string(), sim.phases(), records);
+  return summarize(toString(model), sim.phases(), records);
+}
+
 RunSummary runPeer(const Scene& scene, const Options& options, long steps, const fs::path& dir,
                    fse::support::ProgressBar& progress) {
   BulletCloth peer(scene);
@@ -141,12 +214,27 @@ std::string machine() {
 nlohmann::json sceneJson(const Scene& scene) {
   nlohmann::json effects = nlohmann::json::array();
   for (Effect e : scene.effects) effects.push_back(toString(e));
+  if (scene.isRigid()) {
+    const StaticMesh bowl = scene.bowl ? makeBowl(*scene.bowl) : StaticMesh{};
+    return {{"name", scene.name},
+            {"kind", "rigid"},
+            {"effects", effects},
+            {"step", scene.time.step},
+            {"substeps", scene.time.substeps},
+            {"duration", scene.time.duration},
+            {"bodies", sceneBodies(*scene.rigid_bodies).size()},
+            {"body_mesh_vertices", scene.rigid_bodies->mesh_vertices},
+            {"bowl_vertices", bowl.vertices.cols()},
+            {"bowl_triangles", bowl.triangles.size()},
+            {"tolerance", scene.rigid_contact ? scene.rigid_contact->tolerance : 0.0}};
+  }
   const ClothSpec& c = scene.cloth;
   return {{"name", scene.name},
           {"effects", effects},
           {"step", scene.time.step},
           {"substeps", scene.time.substeps},
           {"duration", scene.time.duration},
+          {"kind", "cloth"},
           {"vertices", c.nx * c.ny},
           {"triangles", 2 * (c.nx - 1) * (c.ny - 1)},  // two per grid quad (cloth_mesh.h)
           {"tolerance", scene.collision ? scene.collision->tolerance : 0.0}};
@@ -158,8 +246,10 @@ int main(int argc, char** argv) {
   Options options;
   CLI::App app{"fse_sim: runs a scene file (JSON) and writes its timings and measurements"};
   app.add_option("scene", options.scene_path, "scene file (sim/scenes/*.json)")->required();
-  app.add_option("--contact", options.models, "contact models to run, in order: exact paper mesh")
-      ->check(CLI::IsMember({"exact", "paper", "mesh"}))
+  app.add_option("--contact", options.models,
+                 "contact models to run, in order: exact paper mesh (cloth scenes); exact vertices "
+                 "paper (rigid-body scenes)")
+      ->check(CLI::IsMember({"exact", "paper", "mesh", "vertices"}))
       ->expected(1, 3);
   app.add_flag("--peer", options.peer, "also run Bullet's soft-body cloth (the peer)");
   app.add_option("--mesh-vertices", options.mesh_vertices,
@@ -183,6 +273,22 @@ int main(int argc, char** argv) {
                    options.duration);
       scene.time.duration = options.duration;
     }
+    for (const std::string& name : options.models) {
+      const ContactModel model = *contactModelNamed(name);
+      if (scene.isRigid() && model == ContactModel::kMesh) {
+        throw SceneError(
+            "--contact mesh: not available for rigid-body scenes yet (use exact, "
+            "vertices or paper)");
+      }
+      if (!scene.isRigid() && model == ContactModel::kVertices) {
+        throw SceneError(
+            "--contact vertices: a rigid-body model; cloth scenes take exact, paper "
+            "or mesh");
+      }
+    }
+    if (scene.isRigid() && options.peer) {
+      throw SceneError("--peer: the Bullet peer of rigid-body scenes is not built yet");
+    }
   } catch (const SceneError& e) {
     std::cerr << "fse_sim: error: " << e.what() << '\n';
     return 2;
@@ -199,13 +305,16 @@ int main(int argc, char** argv) {
     fs::remove_all(out);
     fs::create_directories(out);
     if (!scene.shapes.empty()) writeShapes(scene, (out / "shapes.obj").string());
+    if (scene.bowl) writeStaticMeshObj((out / "bowl.obj").string(), makeBowl(*scene.bowl));
     const long runs = long(options.models.size()) + (options.peer ? 1 : 0);
     fse::support::ProgressBar progress(runs * steps, true);
     nlohmann::json summaries = nlohmann::json::array();
     std::vector<RunSummary> results;
     for (const std::string& name : options.models) {
-      results.push_back(
-          runModel(scene, *contactModelNamed(name), options, steps, out / name, progress));
+      const ContactModel model = *contactModelNamed(name);
+      results.push_back(scene.isRigid()
+                            ? runRigidModel(scene, model, options, steps, out / name, progress)
+                            : runModel(scene, model, options, steps, out / name, progress));
     }
     if (options.peer) results.push_back(runPeer(scene, options, steps, out / "bullet", progress));
     progress.finish();

@@ -20,6 +20,12 @@ const char* toString(Effect effect) {
       return "friction";
     case Effect::kDamping:
       return "damping";
+    case Effect::kRigidBodies:
+      return "rigid_bodies";
+    case Effect::kRigidContact:
+      return "rigid_contact";
+    case Effect::kRestitution:
+      return "restitution";
   }
   return "?";
 }
@@ -39,12 +45,15 @@ const char* toString(ContactModel model) {
       return "paper";
     case ContactModel::kMesh:
       return "mesh";
+    case ContactModel::kVertices:
+      return "vertices";
   }
   return "?";
 }
 
 std::optional<ContactModel> contactModelNamed(const std::string& name) {
-  for (ContactModel m : {ContactModel::kExact, ContactModel::kPaper, ContactModel::kMesh}) {
+  for (ContactModel m :
+       {ContactModel::kExact, ContactModel::kPaper, ContactModel::kMesh, ContactModel::kVertices}) {
     if (name == toString(m)) return m;
   }
   return std::nullopt;

@@ -9,28 +9,45 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace fse_sim {
 
 /// What a scene can ask to be simulated. Each has its own parameter block in the scene file,
 /// under the effect's name; a block for an effect that is not declared is an error.
-enum class Effect { kGravity, kStretch, kBending, kPinning, kCollision, kFriction, kDamping };
+enum class Effect {
+  kGravity,
+  kStretch,
+  kBending,
+  kPinning,
+  kCollision,
+  kFriction,
+  kDamping,
+  kRigidBodies,
+  kRigidContact,
+  kRestitution
+};
 
-constexpr std::array<Effect, 7> kAllEffects = {
-    Effect::kGravity,   Effect::kStretch,  Effect::kBending, Effect::kPinning,
-    Effect::kCollision, Effect::kFriction, Effect::kDamping};
+constexpr std::array<Effect, 10> kAllEffects = {
+    Effect::kGravity,      Effect::kStretch,    Effect::kBending, Effect::kPinning,
+    Effect::kCollision,    Effect::kFriction,   Effect::kDamping, Effect::kRigidBodies,
+    Effect::kRigidContact, Effect::kRestitution};
 
 /// The effect's name in scene files ("gravity", ...).
 const char* toString(Effect effect);
 /// The effect named `name`, or nothing.
 std::optional<Effect> effectNamed(const std::string& name);
 
-/// How cloth vertices meet the rigid superellipsoids (chosen per run; scene_loader.h).
+/// How cloth vertices meet the rigid superellipsoids, and rigid bodies each other (chosen per
+/// run; scene_loader.h).
 enum class ContactModel {
-  kExact,  ///< the library's Exact solver through its batched, culled queries (the default)
-  kPaper,  ///< the same queries with the paper's method at its case-study settings
-  kMesh,   ///< the superellipsoid tessellated, as an FCL BVH; signed distance to the mesh
+  kExact,     ///< cloth: the library's Exact solver through its batched, culled queries (the
+              ///< default); rigid bodies: the library's exact superellipsoid–superellipsoid pair
+  kPaper,     ///< the same vertex queries with the paper's method at its case-study settings
+  kMesh,      ///< the superellipsoid tessellated, as an FCL BVH; signed distance to the mesh
+  kVertices,  ///< rigid bodies: each body's mesh vertices against the other's implicit
+              ///< surface, both ways, with the Exact solver (the paper's contact model)
 };
 const char* toString(ContactModel model);
 std::optional<ContactModel> contactModelNamed(const std::string& name);
@@ -38,7 +55,8 @@ std::optional<ContactModel> contactModelNamed(const std::string& name);
 /// What a run chooses (the command line), not the scene file.
 struct SimulationOptions {
   ContactModel model = ContactModel::kExact;
-  int mesh_vertices = 702;  ///< kMesh: the tessellation's vertex count (the paper's display mesh)
+  int mesh_vertices = 702;  ///< cloth, kMesh: the tessellation's vertex count (the paper's display
+                            ///< mesh); rigid bodies use RigidBodiesSpec::mesh_vertices
   /// Threads for the library's batched queries and the constraint sweeps: 0 = as many as TBB
   /// offers, 1 = the calling thread only. Results are bitwise the same for any count.
   int threads = 0;
@@ -59,7 +77,7 @@ struct ClothSpec {
   Eigen::Vector3d velocity{0, 0, 0};  ///< m/s, initial velocity of every vertex
 };
 
-/// A rigid superellipsoid (fixed in space for this issue).
+/// A superellipsoid: a fixed shape of a cloth scene, or a rigid body's geometry and initial pose.
 struct ShapeSpec {
   Eigen::Vector3d radii{1, 1, 1};
   double eps1 = 1, eps2 = 1;
@@ -94,6 +112,47 @@ struct DampingSpec {
   double linear = 0.1;  ///< 1/s: velocities decay as exp(−linear·t)
 };
 
+/// A rigid superellipsoid body of a `rigid_bodies` scene.
+struct BodySpec {
+  ShapeSpec shape;                            ///< its geometry and initial pose
+  Eigen::Vector3d velocity{0, 0, 0};          ///< m/s
+  Eigen::Vector3d angular_velocity{0, 0, 0};  ///< rad/s, world frame
+  bool fixed = false;                         ///< never moves (infinite mass)
+};
+/// Bodies drawn from a seed (the paper's chain of random superellipsoids), their centres on a
+/// helix around a vertical axis: body i at start + (r·cos(i·turn), r·sin(i·turn), i·rise).
+struct BodyGenerator {
+  int count = 0;
+  unsigned seed = 1;
+  std::pair<double, double> radii{0.5, 0.6};      ///< each radius uniform in this range, m
+  std::pair<double, double> exponents{0.1, 1.9};  ///< each exponent uniform in this range
+  Eigen::Vector3d start{0, 0, 0};                 ///< m, the helix's axis at the first body
+  double helix_radius = 0;                        ///< m (0: a vertical column)
+  double turn_deg = 0;                            ///< degrees about the axis per body
+  double rise = 1.25;                             ///< m up per body
+};
+struct RigidBodiesSpec {
+  double density = 1000;    ///< kg/m³, every body
+  int mesh_vertices = 506;  ///< each body's tessellation (the `vertices` and `mesh` models)
+  std::optional<BodyGenerator> generate;
+  std::vector<BodySpec> bodies;  ///< the listed bodies, then the generated ones
+};
+/// A fixed bowl: a closed hemispherical shell (opening up) generated from its sizes, or a
+/// triangle mesh read from an OBJ file.
+struct BowlSpec {
+  double radius = 3;                  ///< m, inner
+  double thickness = 0.25;            ///< m
+  int rings = 25, segments = 100;     ///< per face: 2·(1 + rings·segments) vertices in all
+  std::string obj;                    ///< instead of the generated shell, if not empty
+  Eigen::Vector3d position{0, 0, 0};  ///< m: where the bowl's centre (of its sphere) goes
+};
+struct RigidContactSpec {
+  double tolerance = 0.015;  ///< m: contact shell, and the most bodies may interpenetrate
+};
+struct RestitutionSpec {
+  double coefficient = 0.3;  ///< normal speed kept after an impact, [0, 1]
+};
+
 struct Scene {
   std::string name;
   std::string description;
@@ -109,7 +168,13 @@ struct Scene {
   std::optional<CollisionSpec> collision;
   std::optional<FrictionSpec> friction;
   std::optional<DampingSpec> damping;
+  std::optional<RigidBodiesSpec> rigid_bodies;
+  std::optional<RigidContactSpec> rigid_contact;
+  std::optional<RestitutionSpec> restitution;
+  std::optional<BowlSpec> bowl;  ///< rigid-body scenes only
 
+  /// A cloth scene (cloth + fixed shapes) or a rigid-body scene (`rigid_bodies`, no cloth).
+  bool isRigid() const { return rigid_bodies.has_value(); }
   bool has(Effect effect) const;
 };
 

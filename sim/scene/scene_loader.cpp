@@ -7,6 +7,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "scene/rigid_bodies.h"
+
 namespace fse_sim {
 namespace {
 
@@ -73,6 +75,16 @@ void readCloth(ObjectReader& root, Scene& scene) {
   r.finish();
 }
 
+/// The library's own checks of a superellipsoid (radii, exponents in (0, 2), aspect ratio),
+/// with its message under `path`.
+void checkShape(const ShapeSpec& s, const std::string& path) {
+  try {
+    fcl_superellipsoid::Superellipsoidd(s.radii[0], s.radii[1], s.radii[2], s.eps1, s.eps2);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(path + ": " + e.what());
+  }
+}
+
 void readShapes(ObjectReader& root, Scene& scene) {
   const json* shapes = root.optional("shapes");
   if (shapes == nullptr) return;
@@ -88,12 +100,7 @@ void readShapes(ObjectReader& root, Scene& scene) {
                  s.position.norm());
     s.rotation_deg = r.vector3("rotation_deg", s.rotation_deg);
     r.finish();
-    // The library's own checks (radii, exponents in (0, 2), aspect ratio), with its message.
-    try {
-      fcl_superellipsoid::Superellipsoidd(s.radii[0], s.radii[1], s.radii[2], s.eps1, s.eps2);
-    } catch (const std::invalid_argument& e) {
-      throw SceneError(r.path() + ": " + e.what());
-    }
+    checkShape(s, r.path());
     scene.shapes.push_back(s);
   }
 }
@@ -182,6 +189,150 @@ void readPinning(ObjectReader& root, Scene& scene) {
   r.finish();
 }
 
+std::pair<double, double> readRange(ObjectReader& r, const std::string& key,
+                                    std::pair<double, double> fallback) {
+  const json* value = r.optional(key);
+  if (value == nullptr) return fallback;
+  const auto range = readPair(*value, r.pathOf(key));
+  requireRange(range.first <= range.second, r.pathOf(key), "an interval [low, high], low ≤ high",
+               range.first - range.second);
+  return range;
+}
+
+void readBodyGenerator(ObjectReader& parent, RigidBodiesSpec& spec) {
+  const json* block = parent.optional("generate");
+  if (block == nullptr) return;
+  ObjectReader r(*block, parent.pathOf("generate"));
+  BodyGenerator g;
+  g.count = r.integer("count");
+  requireRange(g.count >= 0 && g.count <= kMaxRigidBodies, r.pathOf("count"),
+               "in [0, " + std::to_string(kMaxRigidBodies) + "]", g.count);
+  const int seed = r.integer("seed", 1);
+  requireRange(seed >= 0, r.pathOf("seed"), "≥ 0", seed);
+  g.seed = unsigned(seed);
+  g.radii = readRange(r, "radii", g.radii);
+  g.exponents = readRange(r, "exponents", g.exponents);
+  g.start = r.vector3("start", g.start);
+  requireRange(g.start.norm() <= 1e6, r.pathOf("start"), "within 1e6 m of the origin",
+               g.start.norm());
+  g.helix_radius = r.number("helix_radius", g.helix_radius);
+  requireRange(g.helix_radius >= 0 && g.helix_radius <= 1e6, r.pathOf("helix_radius"),
+               "in [0, 1e6] m", g.helix_radius);
+  g.turn_deg = r.number("turn_deg", g.turn_deg);
+  requireRange(std::abs(g.turn_deg) <= 360, r.pathOf("turn_deg"), "in [-360, 360] degrees",
+               g.turn_deg);
+  g.rise = r.number("rise", g.rise);
+  requireRange(std::abs(g.rise) * g.count <= 1e6, r.pathOf("rise"),
+               "at most 1e6 m for the whole chain", std::abs(g.rise) * g.count);
+  r.finish();
+  // The extremes of the ranges are shapes the generator can draw: the library checks them.
+  for (double radius : {g.radii.first, g.radii.second}) {
+    for (double eps : {g.exponents.first, g.exponents.second}) {
+      ShapeSpec s;
+      s.radii.setConstant(radius);
+      s.eps1 = s.eps2 = eps;
+      checkShape(s, r.path());
+    }
+  }
+  spec.generate = g;
+}
+
+void readRigidBodies(ObjectReader& root, Scene& scene) {
+  const json* block = effectBlock(root, scene, Effect::kRigidBodies);
+  if (!scene.has(Effect::kRigidBodies)) return;
+  if (block == nullptr) {
+    throw SceneError(root.pathOf("rigid_bodies") +
+                     ": \"rigid_bodies\" is declared but has no block (its bodies are listed "
+                     "there, under \"bodies\" or \"generate\")");
+  }
+  RigidBodiesSpec& spec = scene.rigid_bodies.emplace();
+  ObjectReader r(*block, root.pathOf("rigid_bodies"));
+  spec.density = r.number("density", spec.density);
+  requireRange(spec.density > 0 && spec.density <= 1e6, r.pathOf("density"), "in (0, 1e6] kg/m³",
+               spec.density);
+  spec.mesh_vertices = r.integer("mesh_vertices", spec.mesh_vertices);
+  requireRange(spec.mesh_vertices >= 6 && spec.mesh_vertices <= 100000, r.pathOf("mesh_vertices"),
+               "in [6, 100000]", spec.mesh_vertices);
+  if (const json* bodies = r.optional("bodies")) {
+    const std::string path = r.pathOf("bodies");
+    const auto& array = asArray(*bodies, path);
+    requireRange(array.size() <= std::size_t(kMaxRigidBodies), path,
+                 "at most " + std::to_string(kMaxRigidBodies) + " bodies", double(array.size()));
+    for (std::size_t i = 0; i < array.size(); ++i) {
+      ObjectReader b(array[i], childPath(path, i));
+      BodySpec body;
+      ShapeSpec& s = body.shape;
+      s.radii = b.vector3("radii");
+      std::tie(s.eps1, s.eps2) = readPair(b.required("exponents"), b.pathOf("exponents"));
+      s.position = b.vector3("position", s.position);
+      requireRange(s.position.norm() <= 1e6, b.pathOf("position"), "within 1e6 m of the origin",
+                   s.position.norm());
+      s.rotation_deg = b.vector3("rotation_deg", s.rotation_deg);
+      body.velocity = b.vector3("velocity", body.velocity);
+      requireRange(body.velocity.norm() <= 1e4, b.pathOf("velocity"), "at most 1e4 m/s",
+                   body.velocity.norm());
+      body.angular_velocity = b.vector3("angular_velocity", body.angular_velocity);
+      requireRange(body.angular_velocity.norm() <= 1e4, b.pathOf("angular_velocity"),
+                   "at most 1e4 rad/s", body.angular_velocity.norm());
+      if (const json* fixed = b.optional("fixed")) {
+        if (!fixed->is_boolean()) {
+          throw SceneError(b.pathOf("fixed") + ": must be true or false, got " + fixed->dump());
+        }
+        body.fixed = fixed->get<bool>();
+      }
+      b.finish();
+      checkShape(s, b.path());
+      spec.bodies.push_back(body);
+    }
+  }
+  readBodyGenerator(r, spec);
+  r.finish();
+  const long total = long(spec.bodies.size()) + (spec.generate ? spec.generate->count : 0);
+  requireRange(total >= 1 && total <= kMaxRigidBodies, r.path(),
+               "between 1 and " + std::to_string(kMaxRigidBodies) +
+                   " bodies (listed under \"bodies\" and generated)",
+               double(total));
+  checkBodiesApart(spec, r.path());
+}
+
+void readBowl(ObjectReader& root, Scene& scene, const std::string& directory) {
+  const json* block = root.optional("bowl");
+  if (block == nullptr) return;
+  if (!scene.isRigid()) {
+    throw SceneError(root.pathOf("bowl") + ": a bowl needs \"rigid_bodies\" declared in /effects");
+  }
+  ObjectReader r(*block, root.pathOf("bowl"));
+  BowlSpec& bowl = scene.bowl.emplace();
+  bowl.position = r.vector3("position", bowl.position);
+  requireRange(bowl.position.norm() <= 1e6, r.pathOf("position"), "within 1e6 m of the origin",
+               bowl.position.norm());
+  if (const json* obj = r.optional("obj")) {
+    bowl.obj = asString(*obj, r.pathOf("obj"));
+    if (bowl.obj.empty()) throw SceneError(r.pathOf("obj") + ": must be a file name, got \"\"");
+    // Relative to the scene file, as a user who writes "bowl.obj" beside it means.
+    if (bowl.obj.front() != '/' && !directory.empty()) bowl.obj = directory + "/" + bowl.obj;
+    for (const char* key : {"radius", "thickness", "rings", "segments"}) {
+      if (r.optional(key) != nullptr) {
+        throw SceneError(r.pathOf(key) + ": a bowl read from \"obj\" takes no generated size");
+      }
+    }
+  } else {
+    bowl.radius = r.number("radius", bowl.radius);
+    requireRange(bowl.radius > 0 && bowl.radius <= 1e6, r.pathOf("radius"), "in (0, 1e6] m",
+                 bowl.radius);
+    bowl.thickness = r.number("thickness", bowl.thickness);
+    requireRange(bowl.thickness > 0 && bowl.thickness <= bowl.radius, r.pathOf("thickness"),
+                 "in (0, radius] m", bowl.thickness);
+    bowl.rings = r.integer("rings", bowl.rings);
+    requireRange(bowl.rings >= 2 && bowl.rings <= 1000, r.pathOf("rings"), "in [2, 1000]",
+                 bowl.rings);
+    bowl.segments = r.integer("segments", bowl.segments);
+    requireRange(bowl.segments >= 3 && bowl.segments <= 10000, r.pathOf("segments"),
+                 "in [3, 10000]", bowl.segments);
+  }
+  r.finish();
+}
+
 void readEffectBlocks(ObjectReader& root, Scene& scene) {
   if (const json* block = effectBlock(root, scene, Effect::kGravity); scene.has(Effect::kGravity)) {
     scene.gravity.emplace();
@@ -209,8 +360,10 @@ void readEffectBlocks(ObjectReader& root, Scene& scene) {
   }
   if (const json* block = effectBlock(root, scene, Effect::kFriction);
       scene.has(Effect::kFriction)) {
-    if (!scene.has(Effect::kCollision)) {
-      throw SceneError("/effects: \"friction\" acts at contacts and needs \"collision\" declared");
+    if (!scene.has(Effect::kCollision) && !scene.has(Effect::kRigidContact)) {
+      throw SceneError(
+          "/effects: \"friction\" acts at contacts and needs \"collision\" or \"rigid_contact\" "
+          "declared");
     }
     scene.friction.emplace();
     if (block != nullptr) {
@@ -234,14 +387,68 @@ void readEffectBlocks(ObjectReader& root, Scene& scene) {
       r.finish();
     }
   }
+  if (const json* block = effectBlock(root, scene, Effect::kRigidContact);
+      scene.has(Effect::kRigidContact)) {
+    if (!scene.has(Effect::kRigidBodies)) {
+      throw SceneError(
+          "/effects: \"rigid_contact\" acts between rigid bodies and needs "
+          "\"rigid_bodies\" declared");
+    }
+    scene.rigid_contact.emplace();
+    if (block != nullptr) {
+      ObjectReader r(*block, root.pathOf("rigid_contact"));
+      scene.rigid_contact->tolerance = r.number("tolerance", scene.rigid_contact->tolerance);
+      requireRange(scene.rigid_contact->tolerance > 0 && scene.rigid_contact->tolerance <= 1e3,
+                   r.pathOf("tolerance"), "in (0, 1e3] m", scene.rigid_contact->tolerance);
+      r.finish();
+    }
+  }
+  if (const json* block = effectBlock(root, scene, Effect::kRestitution);
+      scene.has(Effect::kRestitution)) {
+    if (!scene.has(Effect::kRigidContact)) {
+      throw SceneError(
+          "/effects: \"restitution\" acts at contacts and needs \"rigid_contact\" "
+          "declared");
+    }
+    scene.restitution.emplace();
+    if (block != nullptr) {
+      ObjectReader r(*block, root.pathOf("restitution"));
+      scene.restitution->coefficient = r.number("coefficient", scene.restitution->coefficient);
+      requireRange(scene.restitution->coefficient >= 0 && scene.restitution->coefficient <= 1,
+                   r.pathOf("coefficient"), "in [0, 1]", scene.restitution->coefficient);
+      r.finish();
+    }
+  }
   if (scene.has(Effect::kCollision) && scene.shapes.empty()) {
     throw SceneError("/shapes: \"collision\" is declared but the scene has no shapes");
   }
 }
 
-}  // namespace
+/// A rigid-body scene has no cloth: the cloth's blocks and effects are refused there.
+void refuseClothInRigidScene(ObjectReader& root, const Scene& scene) {
+  for (const char* key : {"cloth", "shapes"}) {
+    if (root.optional(key) != nullptr) {
+      throw SceneError(root.pathOf(key) +
+                       ": a \"rigid_bodies\" scene has no cloth and no fixed shapes (a fixed "
+                       "body is a body with \"fixed\": true)");
+    }
+  }
+  for (Effect e : {Effect::kStretch, Effect::kBending, Effect::kPinning, Effect::kCollision}) {
+    if (scene.has(e)) {
+      throw SceneError(std::string("/effects: \"") + toString(e) +
+                       "\" acts on a cloth, and a \"rigid_bodies\" scene has none");
+    }
+  }
+}
 
-Scene parseScene(const std::string& text, const std::string& source) {
+/// The folder of a file's path ("" for a bare name): where the files a scene names are.
+std::string directoryOf(const std::string& path) {
+  const auto slash = path.rfind('/');
+  return slash == std::string::npos ? "" : path.substr(0, slash);
+}
+
+Scene parseSceneIn(const std::string& text, const std::string& source,
+                   const std::string& directory) {
   json document;
   try {
     document = json::parse(text);
@@ -276,8 +483,15 @@ Scene parseScene(const std::string& text, const std::string& source) {
     scene.description = root.string("description", "");
     readEffects(root, scene);
     readTime(root, scene);
-    readCloth(root, scene);
-    readShapes(root, scene);
+    if (scene.has(Effect::kRigidBodies)) {
+      refuseClothInRigidScene(root, scene);
+      readRigidBodies(root, scene);
+      readBowl(root, scene, directory);
+    } else {
+      readCloth(root, scene);
+      readShapes(root, scene);
+      readBowl(root, scene, directory);  // refused: no rigid bodies
+    }
     readEffectBlocks(root, scene);
     root.finish();
     return scene;
@@ -286,13 +500,19 @@ Scene parseScene(const std::string& text, const std::string& source) {
   }
 }
 
+}  // namespace
+
+Scene parseScene(const std::string& text, const std::string& source) {
+  return parseSceneIn(text, source, "");
+}
+
 Scene loadScene(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path + ": cannot read the scene file");
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw SceneError(path + ": cannot read the scene file");
-  return parseScene(text.str(), path);
+  return parseSceneIn(text.str(), path, directoryOf(path));
 }
 
 }  // namespace fse_sim

@@ -14,12 +14,15 @@ namespace fse_sim {
 
 /// Largest cloth the runner accepts (vertices); beyond it a scene is refused, not attempted.
 constexpr long kMaxClothVertices = 10000000;
+/// Most rigid bodies a scene may have.
+constexpr int kMaxRigidBodies = 10000;
 
 /// Parses scene text. `source` names it in messages (a file name).
 /// @throws SceneError for invalid JSON or an invalid scene.
 Scene parseScene(const std::string& text, const std::string& source);
 
-/// Reads and parses a scene file. @throws SceneError also if the file cannot be read.
+/// Reads and parses a scene file (files it names, such as a bowl's OBJ, are relative to it).
+/// @throws SceneError also if the file cannot be read.
 Scene loadScene(const std::string& path);
 
 }  // namespace fse_sim

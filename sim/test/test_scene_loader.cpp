@@ -3,11 +3,14 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
 #include "physics/cloth_mesh.h"
+#include "physics/static_mesh.h"
 #include "scene/scene_loader.h"
 
 namespace fse_sim {
@@ -161,6 +164,109 @@ TEST(SceneLoaderTest, FrictionWithoutCollisionAndCollisionWithoutShapes) {
   EXPECT_REFUSED(
       replaced(kValid, "\"shapes\": [{\"radii\": [1, 1, 1], \"exponents\": [0.5, 0.5]}],", ""),
       "/shapes", "no shapes");
+}
+
+// A valid rigid-body scene; each test below breaks one thing in it.
+const char* kRigid = R"({
+  "effects": ["gravity", "rigid_bodies", "rigid_contact", "friction", "restitution"],
+  "time": {"step": 0.01, "substeps": 4, "duration": 0.1},
+  "rigid_bodies": {"density": 1000, "mesh_vertices": 100,
+    "bodies": [{"radii": [0.3, 0.3, 0.3], "exponents": [1, 1], "position": [0, 0, 2],
+                "velocity": [0, 0, 0], "angular_velocity": [0, 0, 0], "fixed": false}],
+    "generate": {"count": 3, "seed": 1, "radii": [0.2, 0.25], "exponents": [0.5, 1.5],
+                 "start": [0, 0, 4], "helix_radius": 0, "turn_deg": 0, "rise": 1}},
+  "bowl": {"radius": 2, "thickness": 0.2, "rings": 5, "segments": 12},
+  "rigid_contact": {"tolerance": 0.01},
+  "restitution": {"coefficient": 0.3}
+})";
+
+TEST(SceneLoaderTest, RigidSceneLoads) {
+  const Scene scene = parseScene(kRigid, "test.json");
+  EXPECT_TRUE(scene.isRigid());
+  EXPECT_EQ(scene.rigid_bodies->bodies.size(), 1u);
+  EXPECT_EQ(scene.rigid_bodies->generate->count, 3);
+  EXPECT_EQ(scene.bowl->rings, 5);
+  EXPECT_DOUBLE_EQ(scene.rigid_contact->tolerance, 0.01);
+  EXPECT_DOUBLE_EQ(scene.restitution->coefficient, 0.3);
+  EXPECT_TRUE(scene.friction.has_value());
+}
+
+TEST(SceneLoaderTest, ShippedBowlSceneHasThePapersCounts) {
+  const Scene scene = loadScene(std::string(FSE_SIM_SCENES) + "/bowl_50.json");
+  EXPECT_EQ(scene.rigid_bodies->generate->count, 50);
+  EXPECT_EQ(scene.rigid_bodies->mesh_vertices, 506);
+  EXPECT_EQ(2 * (1 + scene.bowl->rings * scene.bowl->segments), 5002);
+  EXPECT_DOUBLE_EQ(scene.rigid_contact->tolerance, 0.015);
+}
+
+TEST(SceneLoaderTest, EveryRigidKeyIsChecked) {
+  const std::vector<std::array<std::string, 3>> cases = {
+      // {from, to, part of the message}
+      {"\"density\": 1000", "\"density\": 0", "/rigid_bodies/density"},
+      {"\"mesh_vertices\": 100", "\"mesh_vertices\": 3", "/rigid_bodies/mesh_vertices"},
+      {"\"radii\": [0.3, 0.3, 0.3]", "\"radii\": [0.3, -1, 0.3]", "/rigid_bodies/bodies/0"},
+      {"\"exponents\": [1, 1]", "\"exponents\": [1, 2.5]", "/rigid_bodies/bodies/0"},
+      {"\"position\": [0, 0, 2]", "\"position\": [0, 0, 1e7]", "/rigid_bodies/bodies/0/position"},
+      {"\"velocity\": [0, 0, 0]", "\"velocity\": [1e5, 0, 0]", "/rigid_bodies/bodies/0/velocity"},
+      {"\"angular_velocity\": [0, 0, 0]", "\"angular_velocity\": [0, 1e5, 0]",
+       "/rigid_bodies/bodies/0/angular_velocity"},
+      {"\"fixed\": false", "\"fixed\": 0", "/rigid_bodies/bodies/0/fixed"},
+      {"\"count\": 3", "\"count\": -1", "/rigid_bodies/generate/count"},
+      {"\"seed\": 1", "\"seed\": -4", "/rigid_bodies/generate/seed"},
+      {"\"radii\": [0.2, 0.25]", "\"radii\": [0.25, 0.2]", "/rigid_bodies/generate/radii"},
+      {"\"exponents\": [0.5, 1.5]", "\"exponents\": [0.5, 2.5]", "/rigid_bodies/generate"},
+      {"\"helix_radius\": 0", "\"helix_radius\": -1", "/rigid_bodies/generate/helix_radius"},
+      {"\"turn_deg\": 0", "\"turn_deg\": 400", "/rigid_bodies/generate/turn_deg"},
+      {"\"rise\": 1", "\"rise\": 1e6", "/rigid_bodies/generate/rise"},
+      {"\"rise\": 1", "\"rise\": 0.1", "overlap at the start"},
+      {"\"radius\": 2", "\"radius\": 0", "/bowl/radius"},
+      {"\"thickness\": 0.2", "\"thickness\": 3", "/bowl/thickness"},
+      {"\"rings\": 5", "\"rings\": 1", "/bowl/rings"},
+      {"\"segments\": 12", "\"segments\": 2", "/bowl/segments"},
+      {"\"rings\": 5", "\"obj\": \"x.obj\", \"rings\": 5", "takes no generated size"},
+      {"\"tolerance\": 0.01", "\"tolerance\": 0", "/rigid_contact/tolerance"},
+      {"\"coefficient\": 0.3", "\"coefficient\": 1.5", "/restitution/coefficient"},
+      {"\"seed\": 1,", "\"seed\": 1, \"colour\": 2,", "/rigid_bodies/generate/colour"},
+      {"\"rigid_contact\", ", "", "needs \"collision\" or \"rigid_contact\""},
+      {"\"effects\": [\"gravity\", ", "\"effects\": [\"gravity\", \"stretch\", ",
+       "acts on a cloth"},
+      {"\"bowl\": {", "\"cloth\": {}, \"bowl\": {", "/cloth"},
+  };
+  for (const auto& [from, to, part] : cases) {
+    EXPECT_REFUSED(replaced(kRigid, from, to), part.c_str());
+  }
+  // A bowl in a cloth scene, and rigid bodies declared without their block.
+  EXPECT_REFUSED(replaced(kValid, "\"stretch\": {", "\"bowl\": {}, \"stretch\": {"), "/bowl",
+                 "rigid_bodies");
+  EXPECT_REFUSED(R"({"effects": ["rigid_bodies"], "time": {"step": 0.01, "duration": 1}})",
+                 "/rigid_bodies", "no block");
+}
+
+TEST(SceneLoaderTest, BowlObjIsReadRelativeToTheSceneAndBadFacesAreRefused) {
+  const auto dir = std::filesystem::temp_directory_path() / "fse_sim_bowl_obj_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  // A tetrahedron, counter-clockwise seen from outside.
+  std::ofstream(dir / "bowl.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                     "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
+  const std::string scene_text =
+      replaced(kRigid, "\"radius\": 2, \"thickness\": 0.2, \"rings\": 5, \"segments\": 12",
+               "\"obj\": \"bowl.obj\", \"position\": [0, 0, -5]");
+  std::ofstream(dir / "scene.json") << scene_text;
+  const Scene scene = loadScene((dir / "scene.json").string());
+  const StaticMesh mesh = makeBowl(*scene.bowl);
+  EXPECT_EQ(mesh.vertices.cols(), 4);
+  EXPECT_EQ(mesh.triangles.size(), 4u);
+  EXPECT_EQ(mesh.vertices.col(3), Eigen::Vector3d(0, 0, -4));
+  for (char convex : mesh.convex_edge) EXPECT_TRUE(convex);  // every edge of a tetrahedron
+  std::ofstream(dir / "bowl.obj") << "v 0 0 0\nv 1 0 0\nf 1 2 7\n";
+  try {
+    makeBowl(*scene.bowl);
+    ADD_FAILURE() << "accepted a face index beyond the vertices";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("bowl.obj:3"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST(SceneLoaderTest, InvalidJsonGivesLineAndColumn) {

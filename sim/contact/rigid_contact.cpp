@@ -1,0 +1,441 @@
+#include "contact/rigid_contact.h"
+
+#include <fcl_superellipsoid/batch_distance.h>
+#include <fcl_superellipsoid/point_distance.h>
+#include <fcl_superellipsoid/tessellation.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace fse_sim {
+
+namespace fse = fcl_superellipsoid;
+
+namespace {
+
+double reachOf(const RigidBody& body) { return body.bounding_radius; }
+
+/// The exact model's manifold (RigidContactFinder::Impl::manifoldPoints): support points in
+/// directions tilted from the contact normal, four by kManifoldTilt (toward a box-like face's
+/// edges: on a round shape, points a quarter radian round from the contact) and four between
+/// them by kManifoldCornerTilt (toward its corners: on a face as flat as ε = 0.1's, a larger
+/// tilt lands on the rounded edge above the face's corner, which the face's corner then
+/// undercuts).
+constexpr double kManifoldTilt = 0.25;
+constexpr double kManifoldCornerTilt = 0.02;
+
+/// Whether the bodies' bounding boxes (their frames, half-sizes the radii) come within `margin`
+/// of each other: the separating-axis test on the 15 axes of two boxes.
+bool boxesOverlap(const RigidBody& a, const RigidBody& b, double margin) {
+  const Eigen::Matrix3d A = a.q.toRotationMatrix(), B = b.q.toRotationMatrix();
+  const Eigen::Vector3d ea = a.shape->radii(), eb = b.shape->radii();
+  const Eigen::Vector3d t = b.x - a.x;
+  auto separated = [&](const Eigen::Vector3d& axis) {
+    const double length = axis.norm();
+    if (length < 1e-9) return false;  // parallel edges: a face axis decides
+    const Eigen::Vector3d u = axis / length;
+    const double ra = ea.dot((A.transpose() * u).cwiseAbs());
+    const double rb = eb.dot((B.transpose() * u).cwiseAbs());
+    return std::abs(t.dot(u)) > ra + rb + margin;
+  };
+  for (int k = 0; k < 3; ++k) {
+    if (separated(A.col(k)) || separated(B.col(k))) return false;
+  }
+  for (int k = 0; k < 3; ++k) {
+    for (int l = 0; l < 3; ++l) {
+      if (separated(A.col(k).cross(B.col(l)))) return false;
+    }
+  }
+  return true;
+}
+
+/// How far body a's nearest point along unit u lies beyond body b's farthest: a's support in −u
+/// against b's in +u.
+double gapAlong(const RigidBody& a, const RigidBody& b, const Eigen::Vector3d& u) {
+  const Eigen::Vector3d on_a = a.toWorld(a.shape->supportPoint(a.q.inverse() * -u));
+  const Eigen::Vector3d on_b = b.toWorld(b.shape->supportPoint(b.q.inverse() * u));
+  return u.dot(on_a - on_b);
+}
+
+/// One contact from the witnesses w_a, w_b of a signed distance d between body a and the other
+/// side (body b, or the bowl), a separating along n.
+RigidContact contactAt(const RigidBody& a, int ia, const RigidBody* b, int ib, double d,
+                       const Eigen::Vector3d& w_a, const Eigen::Vector3d& w_b,
+                       const Eigen::Vector3d& n) {
+  RigidContact c;
+  c.a = ia;
+  c.b = ib;
+  c.distance = d;
+  c.n = n;
+  c.r_a = a.q.inverse() * (w_a - a.x);
+  c.r_b = b != nullptr ? Eigen::Vector3d(b->q.inverse() * (w_b - b->x)) : w_b;
+  return c;
+}
+
+/// Whether point p of the triangle's plane (unit normal m) lies in the triangle (edges
+/// included).
+bool overTriangle(const Eigen::Vector3d& p, const fcl::TriangleP<double>& tri,
+                  const Eigen::Vector3d& m) {
+  return m.dot((tri.b - tri.a).cross(p - tri.a)) >= 0 &&
+         m.dot((tri.c - tri.b).cross(p - tri.b)) >= 0 &&
+         m.dot((tri.a - tri.c).cross(p - tri.c)) >= 0;
+}
+
+}  // namespace
+
+struct RigidContactFinder::Impl {
+  ContactModel model;
+  const StaticMesh* bowl;
+  MeshGrid grid;
+  std::vector<fcl::TriangleP<double>> triangles;  ///< the bowl's, world frame
+  std::vector<Eigen::Matrix3Xd> mesh_vertices;    ///< per body, body frame (vertex models)
+  std::vector<Eigen::Matrix3Xd> world_vertices;   ///< per body, this step
+  std::unique_ptr<tbb::task_arena> arena;
+  fse::BatchOptions<double> exact_options, model_options;
+
+  /// A unit of work whose contacts land in their own slot: a body pair, or a body and the bowl.
+  struct Job {
+    int a, b;       // b = −1: the bowl
+    double margin;  // tolerance + the travel of both
+  };
+  std::vector<Job> jobs;
+  std::vector<std::vector<RigidContact>> slots;
+
+  void collectJobs(const std::vector<RigidBody>& bodies, double tolerance,
+                   const std::vector<double>& travel) {
+    jobs.clear();
+    const int n = int(bodies.size());
+    for (int i = 0; i < n; ++i) {
+      for (int j = i + 1; j < n; ++j) {
+        if (bodies[i].fixed() && bodies[j].fixed()) continue;
+        const double margin = tolerance + travel[std::size_t(i)] + travel[std::size_t(j)];
+        const double reach = reachOf(bodies[i]) + reachOf(bodies[j]) + margin;
+        if ((bodies[i].x - bodies[j].x).squaredNorm() <= reach * reach &&
+            boxesOverlap(bodies[i], bodies[j], margin)) {
+          jobs.push_back({i, j, margin});
+        }
+      }
+      if (bowl != nullptr && !bodies[i].fixed()) {
+        jobs.push_back({i, -1, tolerance + travel[std::size_t(i)]});
+      }
+    }
+  }
+
+  template <typename F>
+  void forEachJob(F&& f) {
+    slots.resize(jobs.size());
+    auto run = [&] {
+      tbb::parallel_for(std::size_t(0), jobs.size(), [&](std::size_t k) {
+        slots[k].clear();
+        f(jobs[k], slots[k]);
+      });
+    };
+    if (arena) {
+      arena->execute(run);
+    } else {
+      for (std::size_t k = 0; k < jobs.size(); ++k) {
+        slots[k].clear();
+        f(jobs[k], slots[k]);
+      }
+    }
+  }
+
+  void exactPair(const std::vector<RigidBody>& bodies, int i, int j, double margin, bool manifold,
+                 std::vector<RigidContact>& out) const {
+    const RigidBody& a = bodies[std::size_t(i)];
+    const RigidBody& b = bodies[std::size_t(j)];
+    fcl::DistanceRequestd request;
+    request.enable_nearest_points = true;
+    request.enable_signed_distance = true;
+    fcl::DistanceResultd result;
+    const double d =
+        fse::distance(a.shape.get(), a.transform(), b.shape.get(), b.transform(), request, result);
+    if (!(d <= margin)) return;
+    // The contact normal: of the candidate directions u, the one whose gap (how far a's
+    // nearest point along u lies beyond b's farthest) is largest; the true normal's gap is the
+    // signed distance itself (separating-axis duality). The candidates: the witnesses'
+    // difference (the normal itself wherever the witnesses are unique), both shapes' normals at
+    // the witnesses, and both frames' axes (the faces of box-like shapes, where the witnesses
+    // are one of many pairs: a support point on a face as flat as ε = 0.1's moves far along it,
+    // into the rounded edge, for a tiny turn of the direction).
+    const Eigen::Vector3d w_a = result.nearest_points[0], w_b = result.nearest_points[1];
+    Eigen::Vector3d n = b.q * b.shape->normal(b.q.inverse() * (w_b - b.x));
+    double best = gapAlong(a, b, n);
+    auto consider = [&](const Eigen::Vector3d& u) {
+      if (!u.allFinite()) return;
+      const double g = gapAlong(a, b, u);
+      if (g > best) {
+        best = g;
+        n = u;
+      }
+    };
+    const Eigen::Vector3d gap = d >= 0 ? Eigen::Vector3d(w_a - w_b) : Eigen::Vector3d(w_b - w_a);
+    if (gap.norm() > 0) consider(gap.normalized());
+    consider(-(a.q * a.shape->normal(a.q.inverse() * (w_a - a.x))));
+    for (const RigidBody* body : {&a, &b}) {
+      const Eigen::Matrix3d axes = body->q.toRotationMatrix();
+      for (int k = 0; k < 3; ++k) {
+        consider(axes.col(k));
+        consider(-axes.col(k));
+      }
+    }
+    // The witnesses along the chosen normal: a's support toward b, b's toward a. Where no
+    // candidate reaches the distance itself (best < d: a direction a little off the normal),
+    // b's point moves along n so that the contact starts at the true distance rather than
+    // demanding a larger push than the bodies' overlap.
+    const Eigen::Vector3d on_a = a.toWorld(a.shape->supportPoint(a.q.inverse() * -n));
+    const Eigen::Vector3d on_b =
+        b.toWorld(b.shape->supportPoint(b.q.inverse() * n)) + (best - d) * n;
+    if (manifold) {
+      manifoldPoints(a, i, b, j, -n, margin, out);
+      manifoldPoints(b, j, a, i, n, margin, out);
+    }
+    out.push_back(contactAt(a, i, &b, j, d, on_a, on_b, n));
+  }
+
+  /// Support points of body `from` in eight directions tilted from a centre direction (see
+  /// kManifoldTilt), against body `other`'s surface. The centre is `toward` (the
+  /// direction to the other body), or, where one of `from`'s axes lies within the tilt of it, that
+  /// axis: a box-like face then offers its edges' middles and its corners (the directions go
+  /// round from the next axis in equal steps). Round from `toward` itself, a face as flat as
+  /// ε = 0.1's would send every tilted direction to the same edge.
+  static void manifoldPoints(const RigidBody& from, int i_from, const RigidBody& other, int i_other,
+                             const Eigen::Vector3d& toward, double margin,
+                             std::vector<RigidContact>& out) {
+    const Eigen::Matrix3d axes = from.q.toRotationMatrix();
+    Eigen::Index k = 0;
+    (axes.transpose() * toward).cwiseAbs().maxCoeff(&k);
+    const double alignment = axes.col(k).dot(toward);
+    Eigen::Vector3d centre = toward, t1, t2;
+    if (std::abs(alignment) >= std::cos(kManifoldTilt)) {
+      centre = alignment > 0 ? Eigen::Vector3d(axes.col(k)) : Eigen::Vector3d(-axes.col(k));
+      t1 = axes.col((k + 1) % 3);
+      t2 = axes.col((k + 2) % 3);
+    } else {
+      const Eigen::Vector3d helper =
+          std::abs(toward[0]) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+      t1 = toward.cross(helper).normalized();
+      t2 = toward.cross(t1);
+    }
+    thread_local Eigen::Matrix3Xd points(3, 8);
+    thread_local std::vector<Eigen::Vector3d> local(8);
+    for (int k = 0; k < 8; ++k) {
+      const double angle = M_PI / 4 * k;
+      const double tilt = k % 2 == 0 ? kManifoldTilt : kManifoldCornerTilt;
+      const Eigen::Vector3d t = std::cos(angle) * t1 + std::sin(angle) * t2;
+      local[std::size_t(k)] = from.shape->supportPoint(
+          from.q.inverse() * (std::cos(tilt) * centre + std::sin(tilt) * t));  // from's frame
+      points.col(k) = from.toWorld(local[std::size_t(k)]);
+    }
+    thread_local std::vector<fse::VertexContact<double>> found;
+    fse::BatchOptions<double> options;
+    options.threads = 1;
+    fse::verticesWithinMargin(*other.shape, other.transform(), points, margin, found, options);
+    for (const fse::VertexContact<double>& v : found) {
+      RigidContact contact;
+      contact.a = i_from;
+      contact.b = i_other;
+      contact.distance = v.distance;
+      contact.n = v.normal;
+      contact.r_a = local[std::size_t(v.index)];
+      contact.r_b = other.q.inverse() * (v.nearest_point - other.x);
+      out.push_back(contact);
+    }
+  }
+
+  /// Vertices of body i against body j's implicit surface.
+  void verticesAgainst(const std::vector<RigidBody>& bodies, int i, int j, double margin,
+                       std::vector<RigidContact>& out) const {
+    const RigidBody& b = bodies[std::size_t(j)];
+    fse::BatchOptions<double> options = model_options;
+    if (model == ContactModel::kPaper) {
+      // The paper's case-study settings: tolerance 1e-3 (absolute, as in the paper; the
+      // library's tolerances are relative to the shape's size) and 10 iterations.
+      options.distance.tolerance = 1e-3 / b.shape->size();
+    }
+    thread_local std::vector<fse::VertexContact<double>> found;
+    fse::verticesWithinMargin(*b.shape, b.transform(), world_vertices[std::size_t(i)], margin,
+                              found, options);
+    for (const fse::VertexContact<double>& v : found) {
+      RigidContact c;
+      c.a = i;
+      c.b = j;
+      c.distance = v.distance;
+      c.n = v.normal;
+      c.r_a = mesh_vertices[std::size_t(i)].col(v.index);
+      c.r_b = b.q.inverse() * (v.nearest_point - b.x);
+      out.push_back(c);
+    }
+  }
+
+  void bowlContacts(const RigidBody& a, int i, double margin,
+                    std::vector<RigidContact>& out) const {
+    const double reach = reachOf(a) + margin;
+    thread_local std::vector<int> near_vertices, near_triangles;
+    grid.query(a.x.array() - reach, a.x.array() + reach, near_vertices, near_triangles);
+    const fcl::Transform3d X = a.transform();
+    if (!near_vertices.empty()) {
+      // The bowl's vertices where its surface is convex (the rim) against the body's surface:
+      // a separates from a vertex V along −(its outward normal at V's nearest point). In a
+      // valley of the surface the faces round a vertex reach as far as it does (below).
+      thread_local Eigen::Matrix3Xd points;
+      points.resize(3, long(near_vertices.size()));
+      long count = 0;
+      for (int v : near_vertices) {
+        if (bowl->convex_vertex[std::size_t(v)]) points.col(count++) = bowl->vertices.col(v);
+      }
+      points.conservativeResize(3, count);
+      thread_local std::vector<fse::VertexContact<double>> found;
+      fse::verticesWithinMargin(*a.shape, X, points, margin, found, exact_options);
+      for (const fse::VertexContact<double>& v : found) {
+        RigidContact c;
+        c.a = i;
+        c.b = -1;
+        c.distance = v.distance;
+        c.n = -v.normal;
+        c.r_a = a.q.inverse() * (v.nearest_point - a.x);
+        c.r_b = points.col(v.index);
+        out.push_back(c);
+      }
+    }
+    // The body against the bowl's triangles whose plane it comes within the margin of (it
+    // reaches down to s − h(−m) along the face's outward normal m, h its support function). On a
+    // face, the body's nearest point to the plane is its support point along −m: where that point
+    // lies over the triangle it is the nearest point to the triangle too (the Halfspace pair's
+    // answer). Elsewhere the triangle's nearest point is on its boundary: at a vertex (the bowl's
+    // vertices, above), or at a convex edge (a rim), where the library's superellipsoid–triangle
+    // pair answers. Across a flat or concave edge, a face beside it or a vertex is at least as
+    // near.
+    for (int t : near_triangles) {
+      const fcl::TriangleP<double>& tri = triangles[std::size_t(t)];
+      const Eigen::Vector3d m = bowl->normals.col(t);
+      if (m.squaredNorm() == 0) continue;
+      // A body's centre behind a face is on the solid's side of it: that face is the far
+      // side of a wall (the bowl's outside, seen from its cavity); the near side answers.
+      const double s = m.dot(a.x - tri.a);
+      if (s < 0 || s - reachOf(a) > margin) continue;
+      const Eigen::Vector3d m_body = a.q.inverse() * m;
+      // The bounding box's support Σ aᵢ|mᵢ| bounds the body's from above, without a power.
+      if (s - a.shape->radii().dot(m_body.cwiseAbs()) > margin) continue;
+      const Eigen::Vector3d support = a.shape->supportPoint(-m_body);  // body frame
+      const double h = -m_body.dot(support);
+      if (s - h > margin) continue;
+      if (bowl->convex_edge[std::size_t(t)]) {
+        fcl::DistanceRequestd request;
+        request.enable_nearest_points = true;
+        request.enable_signed_distance = true;
+        fcl::DistanceResultd result;
+        const double d =
+            fse::distance(a.shape.get(), X, &tri, fcl::Transform3d::Identity(), request, result);
+        if (!(d <= margin)) continue;
+        // At a rim the triangle's nearest point may be on an edge, where it has no normal: a
+        // separates along the witnesses' difference (apart: w_a − w_b; overlapping, the
+        // witnesses are the support points along the separating direction: w_b − w_a), or
+        // along the face's normal where they coincide.
+        const Eigen::Vector3d& w_a = result.nearest_points[0];
+        const Eigen::Vector3d& w_b = result.nearest_points[1];
+        const Eigen::Vector3d gap =
+            d >= 0 ? Eigen::Vector3d(w_a - w_b) : Eigen::Vector3d(w_b - w_a);
+        const double length = gap.norm();
+        const Eigen::Vector3d n = length > 1e-9 * reachOf(a) ? Eigen::Vector3d(gap / length) : m;
+        out.push_back(contactAt(a, i, nullptr, -1, d, w_a, w_b, n));
+        continue;
+      }
+      const Eigen::Vector3d p = a.toWorld(support);
+      const double d = m.dot(p - tri.a);
+      if (d > margin) continue;
+      const Eigen::Vector3d foot = p - d * m;
+      if (!overTriangle(foot, tri, m)) continue;
+      RigidContact c;
+      c.a = i;
+      c.b = -1;
+      c.distance = d;
+      c.n = m;
+      c.r_a = support;
+      c.r_b = foot;
+      out.push_back(c);
+    }
+  }
+
+  /// The contacts of one step for `pair_model`; `measuring`: the exact pair's contact only,
+  /// for leastDistance (its manifold points add no distance the pair has not found).
+  void collect(const std::vector<RigidBody>& bodies, double tolerance,
+               const std::vector<double>& travel, ContactModel pair_model, bool measuring,
+               std::vector<RigidContact>& out) {
+    collectJobs(bodies, tolerance, travel);
+    const bool vertex_model = pair_model != ContactModel::kExact;
+    if (vertex_model) {
+      world_vertices.resize(bodies.size());
+      for (std::size_t i = 0; i < bodies.size(); ++i) {
+        world_vertices[i] =
+            (bodies[i].q.toRotationMatrix() * mesh_vertices[i]).colwise() + bodies[i].x;
+      }
+    }
+    forEachJob([&](const Job& job, std::vector<RigidContact>& slot) {
+      if (job.b < 0) {
+        bowlContacts(bodies[std::size_t(job.a)], job.a, job.margin, slot);
+      } else if (vertex_model) {
+        verticesAgainst(bodies, job.a, job.b, job.margin, slot);
+        verticesAgainst(bodies, job.b, job.a, job.margin, slot);
+      } else {
+        exactPair(bodies, job.a, job.b, job.margin, !measuring, slot);
+      }
+    });
+    out.clear();
+    for (const auto& slot : slots) out.insert(out.end(), slot.begin(), slot.end());
+  }
+};
+
+RigidContactFinder::RigidContactFinder(const std::vector<RigidBody>& bodies, const StaticMesh* bowl,
+                                       ContactModel model, int mesh_vertices, int threads)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->model = model;
+  impl_->bowl = bowl;
+  if (bowl != nullptr) {
+    impl_->grid = MeshGrid(*bowl);
+    for (const auto& t : bowl->triangles) {
+      impl_->triangles.emplace_back(bowl->vertices.col(t[0]), bowl->vertices.col(t[1]),
+                                    bowl->vertices.col(t[2]));
+    }
+  }
+  if (model != ContactModel::kExact) {
+    for (const RigidBody& body : bodies) {
+      const fse::TriangleMesh<double> mesh = fse::tessellate(*body.shape, mesh_vertices);
+      Eigen::Matrix3Xd v(3, long(mesh.vertices.size()));
+      for (std::size_t k = 0; k < mesh.vertices.size(); ++k) v.col(long(k)) = mesh.vertices[k];
+      impl_->mesh_vertices.push_back(v);
+    }
+  }
+  // Threads come from the jobs; each batched call runs on its job's thread.
+  impl_->exact_options.threads = 1;
+  impl_->model_options.threads = 1;
+  if (model == ContactModel::kPaper) {
+    impl_->model_options.distance.method = fse::DistanceMethod::kPaper;
+    impl_->model_options.distance.max_iterations = 10;  // the tolerance per body (above)
+  }
+  if (threads != 1) {
+    impl_->arena = threads > 1 ? std::make_unique<tbb::task_arena>(threads)
+                               : std::make_unique<tbb::task_arena>();
+  }
+}
+
+RigidContactFinder::~RigidContactFinder() = default;
+
+void RigidContactFinder::find(const std::vector<RigidBody>& bodies, double tolerance,
+                              const std::vector<double>& travel, std::vector<RigidContact>& out) {
+  impl_->collect(bodies, tolerance, travel, impl_->model, false, out);
+}
+
+double RigidContactFinder::leastDistance(const std::vector<RigidBody>& bodies, double reach) {
+  thread_local std::vector<RigidContact> contacts;
+  impl_->collect(bodies, reach, std::vector<double>(bodies.size(), 0.0), ContactModel::kExact, true,
+                 contacts);
+  double least = std::numeric_limits<double>::infinity();
+  for (const RigidContact& c : contacts) least = std::min(least, c.distance);
+  return least;
+}
+
+}  // namespace fse_sim
