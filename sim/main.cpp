@@ -170,7 +170,25 @@ RunSummary runRigidModel(const Scene& scene, ContactModel model, const Options& 
     progress.advance(1, std::string(toString(model)) + ", t = " + std::to_string(sim.time()));
   }
   writeStepsCsv((dir / "steps.csv").string(), sim.phases(), records);
-  return summarize(toString(model), sim.phases(), records);
+  RunSummary summary = summarize(toString(model), sim.phases(), records);
+  summary.bodies = int(sim.bodies().size());
+  if (scene.bowl) {
+    // Inside: the centre in the bowl's bounding box (for the generated bowl, its sphere below
+    // the rim).
+    summary.bodies_inside = 0;
+    const StaticMesh& bowl = *sim.bowl();
+    const Eigen::Vector3d lo = bowl.vertices.rowwise().minCoeff();
+    const Eigen::Vector3d hi = bowl.vertices.rowwise().maxCoeff();
+    for (const RigidBody& b : sim.bodies()) {
+      const bool inside =
+          scene.bowl->obj.empty()
+              ? (b.x - scene.bowl->position).norm() < scene.bowl->radius &&
+                    b.x[2] < scene.bowl->position[2]
+              : (b.x.array() >= lo.array()).all() && (b.x.array() <= hi.array()).all();
+      summary.bodies_inside += inside;
+    }
+  }
+  return summary;
 }
 
 RunSummary runPeer(const Scene& scene, const Options& options, long steps, const fs::path& dir,
@@ -326,11 +344,15 @@ int main(int argc, char** argv) {
                                             {"runs", summaries}});
     // A short table on stdout: mean ms per phase, and penetration.
     std::printf("%-8s %10s %10s %12s %12s\n", "model", "total ms", "coll. ms", "max pen. m",
-                "contact err");
+                scene.isRigid() ? "inside" : "contact err");
     for (const RunSummary& s : results) {
-      std::printf("%-8s %10.3f %10.3f %12.3e %12.3e\n", s.model.c_str(),
-                  s.mean_ms[int(Phase::kTotal)], s.mean_ms[int(Phase::kCollisionDetection)],
-                  s.max_penetration, s.contact_error_max);
+      std::printf("%-8s %10.3f %10.3f %12.3e ", s.model.c_str(), s.mean_ms[int(Phase::kTotal)],
+                  s.mean_ms[int(Phase::kCollisionDetection)], s.max_penetration);
+      if (scene.isRigid()) {
+        std::printf("%9d/%d\n", s.bodies_inside, s.bodies);
+      } else {
+        std::printf("%12.3e\n", s.contact_error_max);
+      }
     }
   } catch (const std::exception& e) {
     std::cerr << "fse_sim: error: " << e.what() << '\n';

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Tables, plots and pictures of fse_sim runs:
+"""Tables, plots and pictures of fse_sim runs (cloth and rigid-body scenes):
     /usr/bin/python3 sim/scene_report.py RUN_DIR... [--docs DOCS] [--readme README]
 
 Each RUN_DIR is an fse_sim --out directory (run.json, <model>/steps.csv, <model>/frames/*.obj,
@@ -8,9 +8,11 @@ shapes.obj). Writes, into DOCS/scenes/ (default: each RUN_DIR itself):
                            (the paper's Figure 11)
   penetration_<scene>.png  deepest vertex inside the shape over time, with the tolerance
   cloth_<scene>.png        the cloth on the shape at the snapshot times (exact model)
+  bodies_<scene>.png       a rigid-body scene's bodies in the bowl at the snapshot times
 and, without --docs, RUN_DIR/results.md (the tables, generated here; with --docs, rewrites
-the results block of DOCS/scenes.md instead), and with --readme the
-README's scenes block (between `<!-- scenes:begin -->` and `<!-- scenes:end -->`).
+the results block of DOCS/scenes.md instead), and with --readme the README's scenes block
+(between `<!-- scenes:begin -->` and `<!-- scenes:end -->`; rigid-body scenes in its second
+table).
 Needs Debian's python3-matplotlib.
 """
 import argparse
@@ -35,14 +37,23 @@ PAPER = {
     6460: {"integration": 0.066, "position_constraints": 5.324, "velocity_constraints": 1.544,
            "collision_detection": 7.509, "velocity_update": 1.599, "total": 16.231},
 }
+# The paper's Table 7 (50 rigid superellipsoids in a bowl, ms per step, its machine). Its
+# "position constraints" row is the closest to our contact constraints.
+PAPER_RIGID = {"integration": 0.018, "position_constraints": 0.001, "velocity_constraints": 0.119,
+               "collision_detection": 5.520, "velocity_update": 3.257, "total": 8.922}
 PHASES = [("integration", "time integration"), ("position_constraints", "position constraints"),
           ("contact_constraints", "contact constraints (ours)"),
           ("velocity_constraints", "velocity constraints"),
           ("collision_detection", "collision detection"), ("velocity_update", "velocity update"),
           ("total", "total")]
-STYLE = {"exact": "tab:green", "paper": "tab:orange", "mesh": "tab:blue", "bullet": "tab:brown"}
+STYLE = {"exact": "tab:green", "paper": "tab:orange", "mesh": "tab:blue", "bullet": "tab:brown",
+         "vertices": "tab:purple"}
 LABEL = {"exact": "ours, Exact", "paper": "ours, paper's method", "mesh": "ours, FCL mesh",
-         "bullet": "Bullet soft body"}
+         "bullet": "Bullet soft body", "vertices": "ours, vertices (Exact)"}
+RIGID_LABEL = {"exact": "exact pairs", "vertices": "vertices, Exact solver",
+               "paper": "vertices, paper's method"}
+# A body counts as moving while a point of it is faster than this (m/s).
+REST_SPEED = 0.1
 
 
 def read_steps(path):
@@ -80,19 +91,31 @@ def plot_series(run_dir, run, column, ylabel, path, log=False, tolerance=None):
         model = summary["model"]
         steps = read_steps(os.path.join(run_dir, model, "steps.csv"))
         ax.plot([s["time"] for s in steps], [max(s[column], 1e-18) if log else s[column] for s in steps],
-                color=STYLE.get(model), label=LABEL.get(model, model), linewidth=0.9)
+                color=STYLE.get(model), label=label(run, model), linewidth=0.9)
     if tolerance:
         ax.axhline(tolerance, color="black", linestyle="--", linewidth=0.8, label="collision tolerance")
     if log:
         ax.set_yscale("log")
     ax.set_xlabel("simulated time (s)")
     ax.set_ylabel(ylabel)
-    ax.set_title(f"{run['scene']['name']}: {run['scene']['vertices']} vertices")
+    ax.set_title(title(run))
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+def title(run):
+    s = run["scene"]
+    if s.get("kind") == "rigid":
+        return f"{s['name']}: {s['bodies']} bodies, bowl of {s['bowl_vertices']:,} vertices"
+    return f"{s['name']}: {s['vertices']} vertices"
+
+
+def label(run, model):
+    rigid = run["scene"].get("kind") == "rigid"
+    return (RIGID_LABEL if rigid else LABEL).get(model, model)
 
 
 def shaded(polys, base):
@@ -146,6 +169,114 @@ def plot_pictures(run_dir, run, path, model="exact"):
     fig.savefig(path, dpi=90)
     plt.close(fig)
     return True
+
+
+def plot_bodies(run_dir, run, path, model="exact"):
+    """The bodies in the bowl at the snapshot times (a section through the bowl's far half)."""
+    frames_dir = os.path.join(run_dir, model, "frames")
+    if not os.path.isdir(frames_dir) or not os.path.exists(os.path.join(run_dir, "bowl.obj")):
+        return False
+    frames = sorted(f for f in os.listdir(frames_dir) if f.startswith("bodies_"))
+    if not frames:
+        return False
+    bowl_v, bowl_f = read_obj(os.path.join(run_dir, "bowl.obj"))
+    # The far half of the bowl's faces (y > 0), so that the bodies inside are seen.
+    bowl_polys = [[bowl_v[i] for i in f] for f in bowl_f if all(bowl_v[i][1] > 0 for i in f)]
+    lo = [min(v[k] for v in bowl_v) for k in range(3)]
+    hi = [max(v[k] for v in bowl_v) for k in range(3)]
+    cols = min(3, len(frames))
+    rows = math.ceil(len(frames) / cols)
+    fig = plt.figure(figsize=(5 * cols, 4.2 * rows))
+    for k, name in enumerate(frames):
+        ax = fig.add_subplot(rows, cols, k + 1, projection="3d")
+        body_v, body_f = read_obj(os.path.join(frames_dir, name))
+        polys = bowl_polys + [[body_v[i] for i in f] for f in body_f]
+        base = [(0.75, 0.75, 0.78)] * len(bowl_polys) + [(0.85, 0.45, 0.25)] * len(body_f)
+        ax.add_collection3d(Poly3DCollection(polys, facecolors=shaded(polys, base), edgecolor="none"))
+        ax.set_xlim(lo[0], hi[0])
+        ax.set_ylim(lo[1], hi[1])
+        top = max(hi[2], max(v[2] for v in body_v))
+        ax.set_zlim(lo[2], top)
+        ax.set_box_aspect((hi[0] - lo[0], hi[1] - lo[1], top - lo[2]))
+        ax.view_init(elev=20, azim=-90)
+        ax.set_axis_off()
+        t = float(name.split("_")[1].rsplit(".", 1)[0])
+        ax.set_title(f"t = {t:g} s", fontsize=10)
+    fig.suptitle(f"{run['scene']['name']} ({label(run, model)})")
+    fig.tight_layout()
+    fig.savefig(path, dpi=80)
+    plt.close(fig)
+    return True
+
+
+def rest_time(steps):
+    """The end of the last step in which a body point moved faster than REST_SPEED (s)."""
+    moving = [s["time"] for s in steps if s["max_speed"] > REST_SPEED]
+    return moving[-1] if moving else 0.0
+
+
+def rigid_tables(run_dir, run):
+    """The paper's Table 7 layout with its values beside ours, and what each model got right."""
+    runs = {r["model"]: r for r in run["runs"]}
+    models = [m for m in ("exact", "vertices", "paper", "mesh", "bullet") if m in runs]
+    head = "| ms per step | paper (its machine) | " + " | ".join(label(run, m) for m in models) + " |"
+    lines = [head, "|---" * (2 + len(models)) + "|"]
+    for key, name in PHASES:
+        cells = [fmt(runs[m]["mean_ms"].get(key)) for m in models]
+        if not any(cells) and key not in PAPER_RIGID:
+            continue
+        lines.append(f"| {name} | {fmt(PAPER_RIGID.get(key))} | " + " | ".join(cells) + " |")
+    tol = run["scene"]["tolerance"]
+    acc = ["| measured on the exact surfaces | " + " | ".join(label(run, m) for m in models) + " |",
+           "|---" * (1 + len(models)) + "|"]
+    steps = {m: read_steps(os.path.join(run_dir, m, "steps.csv")) for m in models}
+    acc.append("| deepest interpenetration, any step (m) | " + " | ".join(fmt(runs[m]["max_penetration"]) for m in models) + " |")
+    acc.append(f"| steps with interpenetration above the tolerance ({tol:g} m) | " + " | ".join(
+        f"{sum(s['max_penetration'] > tol for s in steps[m])} of {len(steps[m])}" for m in models) + " |")
+    acc.append("| deepest interpenetration after 5 s (m) | " + " | ".join(
+        fmt(max([s["max_penetration"] for s in steps[m] if s["time"] > 5] or [0.0])) for m in models) + " |")
+    acc.append("| bodies inside the bowl at the end | " + " | ".join(
+        f"{runs[m].get('bodies_inside', '?')} of {runs[m].get('bodies', '?')}" for m in models) + " |")
+    acc.append(f"| at rest (every point slower than {REST_SPEED:g} m/s) from (s) | " + " | ".join(
+        fmt(rest_time(steps[m]), 2) for m in models) + " |")
+    acc.append("| fastest body point at the end (m/s) | " + " | ".join(fmt(runs[m]["final_max_speed"]) for m in models) + " |")
+    return "\n".join(lines), "\n".join(acc), steps
+
+
+def rigid_section(run_dir, run, target, rel, name):
+    tol = run["scene"]["tolerance"]
+    plot_series(run_dir, run, "total_ms", "ms per step", os.path.join(target, f"step_time_{name}.png"), log=True)
+    plot_series(run_dir, run, "max_penetration", "deepest interpenetration (m)",
+                os.path.join(target, f"penetration_{name}.png"), log=True, tolerance=tol)
+    pictures = plot_bodies(run_dir, run, os.path.join(target, f"bodies_{name}.png"))
+    timing, accuracy, steps = rigid_tables(run_dir, run)
+    s = run["scene"]
+    runs = {r["model"]: r for r in run["runs"]}
+    ratio = ""
+    if "exact" in runs and "vertices" in runs:
+        ratio = (f"Step, exact pairs / vertices: "
+                 f"{runs['exact']['mean_ms']['total'] / runs['vertices']['mean_ms']['total']:.2f}; "
+                 f"collision detection: "
+                 f"{runs['exact']['mean_ms']['collision_detection'] / runs['vertices']['mean_ms']['collision_detection']:.2f}.")
+    section = [f"### {name}: {s['bodies']} rigid superellipsoids, a bowl of {s['bowl_vertices']:,} vertices",
+               "", f"Bodies of {s['body_mesh_vertices']} vertices (the vertex models); step {s['step']:.5g} s, "
+               f"{s['substeps']} substeps, {s['duration']:g} s simulated, tolerance {tol:g} m; effects: "
+               f"{', '.join(s['effects'])}.", "", timing, "", accuracy, "", ratio, "",
+               f"![step time]({rel}step_time_{name}.png)", "",
+               f"![interpenetration]({rel}penetration_{name}.png)", ""]
+    if pictures:
+        section += [f"![the bodies]({rel}bodies_{name}.png)", ""]
+    row = None
+    if "exact" in runs:
+        ms = lambda m, phase: runs[m]["mean_ms"].get(phase) if m in runs else None
+        row = (f"| {name} | {fmt(ms('exact', 'total'))} / {fmt(ms('exact', 'collision_detection'))} | "
+               f"{fmt(ms('vertices', 'total'))} / {fmt(ms('vertices', 'collision_detection'))} | "
+               f"{fmt(ms('paper', 'total'))} / {fmt(ms('paper', 'collision_detection'))} | "
+               f"{fmt(PAPER_RIGID['total'])} / {fmt(PAPER_RIGID['collision_detection'])} | "
+               f"{fmt(runs['exact']['max_penetration'])} / "
+               f"{fmt(max([x['max_penetration'] for x in steps['exact'] if x['time'] > 5] or [0.0]))} | "
+               f"{runs['exact'].get('bodies_inside')} of {runs['exact'].get('bodies')} |")
+    return "\n".join(section), row
 
 
 def tables(run):
@@ -212,7 +343,8 @@ def main():
     parser.add_argument("--docs")
     parser.add_argument("--readme")
     args = parser.parse_args()
-    sections, headline = [], []
+    sections, headline, rigid_rows = [], [], []
+    commits = {}
     for run_dir in args.runs:
         with open(os.path.join(run_dir, "run.json")) as f:
             run = json.load(f)
@@ -220,6 +352,15 @@ def main():
         run["scene"]["name"] = name
         target = os.path.join(args.docs, "scenes") if args.docs else run_dir
         os.makedirs(target, exist_ok=True)
+        rel = "scenes/" if args.docs else ""
+        if run["scene"].get("kind") == "rigid":
+            section, row = rigid_section(run_dir, run, target, rel, name)
+            sections.append(section)
+            if row:
+                rigid_rows.append(row)
+            machine = f"{run['machine']}, SIMD {run['simd']}"
+            commits[name] = commit(run_dir)
+            continue
         tol = run["scene"]["tolerance"] or None
         plot_series(run_dir, run, "total_ms", "ms per step", os.path.join(target, f"step_time_{name}.png"), log=True)
         plot_series(run_dir, run, "max_penetration", "deepest vertex inside (m)",
@@ -227,7 +368,6 @@ def main():
         pictures = plot_pictures(run_dir, run, os.path.join(target, f"cloth_{name}.png"))
         timing, accuracy = tables(run)
         s = run["scene"]
-        rel = "scenes/" if args.docs else ""
         section = [f"### {name}: {s['vertices']:,} vertices, {s['triangles']:,} triangles",
                    "", f"Step {s['step']:.5g} s, {s['substeps']} substeps, {s['duration']:g} s simulated, "
                    f"tolerance {s['tolerance']:g} m; effects: {', '.join(s['effects'])}.", "",
@@ -248,7 +388,11 @@ def main():
                 f"{fmt(ms('bullet', 'total'))} | {fmt(paper.get('total'))} / {fmt(paper.get('collision_detection'))} | "
                 f"{pen('exact')} / {pen('paper')} / {pen('mesh')} / {pen('bullet')} |")
         machine = f"{run['machine']}, SIMD {run['simd']}"
-        run_commit = commit(run_dir)
+        commits[name] = commit(run_dir)
+    if len(set(commits.values())) == 1:
+        run_commit = next(iter(commits.values()))
+    else:
+        run_commit = ", ".join(f"{c} ({n})" for n, c in commits.items())
     command = "scripts/scenes.sh --full" if args.docs else "scripts/scenes.sh"
     stamp = f"_Run at commit {run_commit}; machine: {machine}. Command: `{command}`._"
     results = "\n".join(sections) + "\n" + stamp
@@ -266,14 +410,21 @@ def main():
         with open(doc, "w") as f:
             f.write(text)
         print(f"written: {doc}")
-    if args.readme and headline:
+    if args.readme and (headline or rigid_rows):
         with open(args.readme) as f:
             text = f.read()
-        table = ("| ms per step; deepest vertex inside the shape | ours, Exact: step / collision | "
-                 "paper's method: collision | FCL mesh: collision | Bullet: step | the paper, its machine: "
-                 "step / collision | deepest inside (m): Exact / paper's / mesh / Bullet |\n"
-                 "|---|---|---|---|---|---|---|\n" + "\n".join(headline))
-        block = (f"<!-- scenes:begin (generated by sim/scene_report.py; do not edit) -->\n{table}\n\n{stamp}\n"
+        table = ""
+        if headline:
+            table += ("| ms per step; deepest vertex inside the shape | ours, Exact: step / collision | "
+                      "paper's method: collision | FCL mesh: collision | Bullet: step | the paper, its machine: "
+                      "step / collision | deepest inside (m): Exact / paper's / mesh / Bullet |\n"
+                      "|---|---|---|---|---|---|---|\n" + "\n".join(headline) + "\n\n")
+        if rigid_rows:
+            table += ("| ms per step: step / collision | exact pairs | vertices, Exact | vertices, paper's "
+                      "method | the paper, its machine | deepest interpenetration (m), exact pairs: any step "
+                      "/ after 5 s | inside the bowl at the end |\n"
+                      "|---|---|---|---|---|---|---|\n" + "\n".join(rigid_rows) + "\n\n")
+        block = (f"<!-- scenes:begin (generated by sim/scene_report.py; do not edit) -->\n{table}{stamp}\n"
                  f"<!-- scenes:end -->")
         text, count = re.subn(r"<!-- scenes:begin.*?<!-- scenes:end -->", lambda m: block, text, flags=re.S)
         if count != 1:

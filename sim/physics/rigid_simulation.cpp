@@ -68,9 +68,13 @@ void RigidSimulation::step() {
 }
 
 void RigidSimulation::substep(double h) {
+  if (solver_) {
+    // The contacts' normal velocities before the substep (restitution), timed as contact work.
+    ScopedPhase timer(times_, Phase::kContactConstraints);
+    solver_->begin(bodies_, contacts_);
+  }
   {
     ScopedPhase timer(times_, Phase::kIntegration);
-    if (solver_) solver_->begin(bodies_, contacts_);
     for (RigidBody& b : bodies_) {
       b.x_prev = b.x;
       b.q_prev = b.q;

@@ -38,17 +38,22 @@ RunSummary summarize(const std::string& model, const std::vector<Phase>& phases,
 nlohmann::json toJson(const RunSummary& s) {
   nlohmann::json phases = nlohmann::json::object();
   for (Phase p : s.phases) phases[columnName(p)] = s.mean_ms[int(p)];
-  return {{"model", s.model},
-          {"steps", s.steps},
-          {"mean_ms", phases},
-          {"max_penetration", s.max_penetration},
-          {"contact_error_max", s.contact_error_max},
-          {"contact_error_mean", s.contact_error_mean},
-          {"first_contact_time", s.first_contact_time},
-          {"max_edge_strain", s.max_edge_strain},
-          {"final_max_speed", s.final_max_speed},
-          {"energy_start", s.energy_start},
-          {"energy_end", s.energy_end}};
+  nlohmann::json out = {{"model", s.model},
+                        {"steps", s.steps},
+                        {"mean_ms", phases},
+                        {"max_penetration", s.max_penetration},
+                        {"contact_error_max", s.contact_error_max},
+                        {"contact_error_mean", s.contact_error_mean},
+                        {"first_contact_time", s.first_contact_time},
+                        {"max_edge_strain", s.max_edge_strain},
+                        {"final_max_speed", s.final_max_speed},
+                        {"energy_start", s.energy_start},
+                        {"energy_end", s.energy_end}};
+  if (s.bodies > 0) {
+    out["bodies"] = s.bodies;
+    out["bodies_inside"] = s.bodies_inside;
+  }
+  return out;
 }
 
 namespace {

@@ -27,6 +27,9 @@ struct RunSummary {
   double max_edge_strain = 0;
   double final_max_speed = 0;  ///< m/s, at the end
   double energy_start = 0, energy_end = 0;
+  /// Rigid-body scenes: how many bodies, and how many end inside the bowl (−1: no bowl).
+  int bodies = 0;
+  int bodies_inside = -1;
 };
 
 RunSummary summarize(const std::string& model, const std::vector<Phase>& phases,
