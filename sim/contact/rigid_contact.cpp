@@ -318,8 +318,13 @@ struct RigidContactFinder::Impl {
       const double s = m.dot(a.x - tri.a);
       if (s < 0 || s - reachOf(a) > margin) continue;
       const Eigen::Vector3d m_body = a.q.inverse() * m;
-      // The bounding box's support Σ aᵢ|mᵢ| bounds the body's from above, without a power.
-      if (s - a.shape->radii().dot(m_body.cwiseAbs()) > margin) continue;
+      // An upper bound of the body's support without a power: its bounding box's, Σ aᵢ|mᵢ|,
+      // and where both exponents are ≥ 1 (the shape inside its ellipsoid) the ellipsoid's,
+      // ‖(aᵢ·mᵢ)‖.
+      const bool pointy = a.shape->eps1() >= 1 && a.shape->eps2() >= 1;
+      const double bound = pointy ? a.shape->radii().cwiseProduct(m_body).norm()
+                                  : a.shape->radii().dot(m_body.cwiseAbs());
+      if (s - bound > margin) continue;
       const Eigen::Vector3d support = a.shape->supportPoint(-m_body);  // body frame
       const double h = -m_body.dot(support);
       if (s - h > margin) continue;
