@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "physics/static_mesh.h"
 #include "scene/rigid_bodies.h"
 
 namespace fse_sim {
@@ -315,6 +316,12 @@ void readBowl(ObjectReader& root, Scene& scene, const std::string& directory) {
       if (r.optional(key) != nullptr) {
         throw SceneError(r.pathOf(key) + ": a bowl read from \"obj\" takes no generated size");
       }
+    }
+    // Read now, so that a bad file is refused before anything runs or is written.
+    try {
+      makeBowl(bowl);
+    } catch (const SceneError& e) {
+      throw SceneError(r.pathOf("obj") + ": " + e.what());
     }
   } else {
     bowl.radius = r.number("radius", bowl.radius);

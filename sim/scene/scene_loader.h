@@ -15,7 +15,7 @@ namespace fse_sim {
 /// Largest cloth the runner accepts (vertices); beyond it a scene is refused, not attempted.
 constexpr long kMaxClothVertices = 10000000;
 /// Most rigid bodies a scene may have.
-constexpr int kMaxRigidBodies = 10000;
+constexpr int kMaxRigidBodies = 2000;
 
 /// Parses scene text. `source` names it in messages (a file name).
 /// @throws SceneError for invalid JSON or an invalid scene.

@@ -259,11 +259,14 @@ TEST(SceneLoaderTest, BowlObjIsReadRelativeToTheSceneAndBadFacesAreRefused) {
   EXPECT_EQ(mesh.triangles.size(), 4u);
   EXPECT_EQ(mesh.vertices.col(3), Eigen::Vector3d(0, 0, -4));
   for (char convex : mesh.convex_edge) EXPECT_TRUE(convex);  // every edge of a tetrahedron
+  // A bad face is refused when the scene is loaded, before anything runs: the file, its line,
+  // and the scene's key.
   std::ofstream(dir / "bowl.obj") << "v 0 0 0\nv 1 0 0\nf 1 2 7\n";
   try {
-    makeBowl(*scene.bowl);
+    loadScene((dir / "scene.json").string());
     ADD_FAILURE() << "accepted a face index beyond the vertices";
   } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("/bowl/obj"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("bowl.obj:3"), std::string::npos) << e.what();
   }
   std::filesystem::remove_all(dir);
