@@ -62,6 +62,25 @@ double gapAlong(const RigidBody& a, const RigidBody& b, const Eigen::Vector3d& u
   return u.dot(on_a - on_b);
 }
 
+/// The contacts of points of body `from` (local(k): the point of query column k, from's frame)
+/// that a batched query found within the margin of body `other`: `from` separates along other's
+/// outward normal at the point's nearest point.
+template <typename Local>
+void appendPointContacts(const std::vector<fse::VertexContact<double>>& found, int i_from,
+                         const RigidBody& other, int i_other, Local&& local,
+                         std::vector<RigidContact>& out) {
+  for (const fse::VertexContact<double>& v : found) {
+    RigidContact c;
+    c.a = i_from;
+    c.b = i_other;
+    c.distance = v.distance;
+    c.n = v.normal;
+    c.r_a = local(v.index);
+    c.r_b = other.q.inverse() * (v.nearest_point - other.x);
+    out.push_back(c);
+  }
+}
+
 /// One contact from the witnesses w_a, w_b of a signed distance d between body a and the other
 /// side (body b, or the bowl), a separating along n.
 RigidContact contactAt(const RigidBody& a, int ia, const RigidBody* b, int ib, double d,
@@ -254,16 +273,8 @@ struct RigidContactFinder::Impl {
     fse::BatchOptions<double> options;
     options.threads = 1;
     fse::verticesWithinMargin(*other.shape, other.transform(), points, margin, found, options);
-    for (const fse::VertexContact<double>& v : found) {
-      RigidContact contact;
-      contact.a = i_from;
-      contact.b = i_other;
-      contact.distance = v.distance;
-      contact.n = v.normal;
-      contact.r_a = local[std::size_t(v.index)];
-      contact.r_b = other.q.inverse() * (v.nearest_point - other.x);
-      out.push_back(contact);
-    }
+    appendPointContacts(
+        found, i_from, other, i_other, [&](Eigen::Index k) { return local[std::size_t(k)]; }, out);
   }
 
   /// Vertices of body i against body j's implicit surface.
@@ -279,16 +290,9 @@ struct RigidContactFinder::Impl {
     thread_local std::vector<fse::VertexContact<double>> found;
     fse::verticesWithinMargin(*b.shape, b.transform(), world_vertices[std::size_t(i)], margin,
                               found, options);
-    for (const fse::VertexContact<double>& v : found) {
-      RigidContact c;
-      c.a = i;
-      c.b = j;
-      c.distance = v.distance;
-      c.n = v.normal;
-      c.r_a = mesh_vertices[std::size_t(i)].col(v.index);
-      c.r_b = b.q.inverse() * (v.nearest_point - b.x);
-      out.push_back(c);
-    }
+    const Eigen::Matrix3Xd& local = mesh_vertices[std::size_t(i)];
+    appendPointContacts(
+        found, i, b, j, [&](Eigen::Index k) { return local.col(k); }, out);
   }
 
   void bowlContacts(const RigidBody& a, int i, double margin,
