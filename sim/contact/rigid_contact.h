@@ -2,18 +2,19 @@
 #define FSE_SIM_CONTACT_RIGID_CONTACT_H
 
 // Collision detection of a rigid-body scene: the contacts between the bodies, and between each
-// body and the fixed bowl, for one step. Body pairs whose bounding spheres come within the
-// margin go to the run's contact model:
-//   exact     the library's superellipsoid–superellipsoid pair (one contact per pair: the two
-//             witnesses of the signed distance);
+// body and the fixed bowl, for one step (docs/scenes.md → "Contact models"). Body pairs whose
+// bounding spheres and bounding boxes come within the margin go to the run's contact model:
+//   exact     the library's superellipsoid–superellipsoid pair (its signed distance, along the
+//             normal whose gap equals it) and a manifold: each body's support points in eight
+//             directions tilted from the normal, against the other's exact surface;
 //   vertices  each body's tessellation vertices against the other's implicit surface, both
 //             ways, through the library's batched queries with the Exact solver (the paper's
 //             model: one contact per vertex within the margin);
 //   paper     the same with the paper's method at its case-study settings.
 // Against the bowl every model does the same, so that a body can neither pass between bowl
-// vertices nor through a triangle: the bowl's vertices near the body against its implicit
-// surface (batched queries, Exact), and the body against each nearby bowl triangle (the
-// library's superellipsoid–triangle pair).
+// vertices nor through a triangle: per nearby face, the body's support point along the face's
+// normal where its foot lies on the face; at a convex (rim) triangle the library's
+// superellipsoid–triangle pair; the rim's vertices against the body's implicit surface.
 // Pairs are examined in parallel; the contacts come out in the same order for any thread count.
 
 #include <fcl/geometry/shape/triangle_p.h>
