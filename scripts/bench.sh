@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, runs the benchmark, plots it and writes its results page.
 #   scripts/bench.sh            the quick mode (seconds after the build): out/ (CSV, JSON, PNG plots)
-#                               and out/benchmark.md; then the cloth scene's quick variant
-#                               (scripts/scenes.sh: out/scenes/)
+#                               and out/benchmark.md; then the scenes' quick variants, the cloth
+#                               and the bowl (scripts/scenes.sh: out/scenes/)
 #   scripts/bench.sh --full     everything (about 20 minutes on 2 cores): fse_bench's full run, the
 #                               micro-benchmarks, the culling study and the aspect sweep; writes
 #                               docs/benchmark.md, docs/bench/*.png and the README's headline block
