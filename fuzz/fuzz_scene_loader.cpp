@@ -1,8 +1,8 @@
 // Fuzz target 4: the scene loader (sim/scene/). Any byte string is either refused with a
 // SceneError that says where (a JSON Pointer, or "line"/"column", or the file name) or gives a
 // valid scene; a valid scene small enough to step here (a cloth, or a few rigid bodies) is built
-// and stepped, and its state must stay finite. Nothing else may escape: no other exception, crash or sanitizer report.
-// docs/hardening.md → "Fuzzing".
+// and stepped, and its state must stay finite. Nothing else may escape: no other exception, crash
+// or sanitizer report. docs/hardening.md → "Fuzzing".
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
