@@ -18,8 +18,6 @@ namespace fse = fcl_superellipsoid;
 
 namespace {
 
-double reachOf(const RigidBody& body) { return body.bounding_radius; }
-
 /// The exact model's manifold (RigidContactFinder::Impl::manifoldPoints): support points in
 /// directions tilted from the contact normal, four by kManifoldTilt (toward a box-like face's
 /// edges: on a round shape, points a quarter radian round from the contact) and four between
@@ -133,7 +131,7 @@ struct RigidContactFinder::Impl {
       for (int j = i + 1; j < n; ++j) {
         if (bodies[i].fixed() && bodies[j].fixed()) continue;
         const double margin = tolerance + travel[std::size_t(i)] + travel[std::size_t(j)];
-        const double reach = reachOf(bodies[i]) + reachOf(bodies[j]) + margin;
+        const double reach = bodies[i].bounding_radius + bodies[j].bounding_radius + margin;
         if ((bodies[i].x - bodies[j].x).squaredNorm() <= reach * reach &&
             boxesOverlap(bodies[i], bodies[j], margin)) {
           jobs.push_back({i, j, margin});
@@ -297,7 +295,7 @@ struct RigidContactFinder::Impl {
 
   void bowlContacts(const RigidBody& a, int i, double margin,
                     std::vector<RigidContact>& out) const {
-    const double reach = reachOf(a) + margin;
+    const double reach = a.bounding_radius + margin;
     thread_local std::vector<int> near_vertices, near_triangles;
     grid.query(a.x.array() - reach, a.x.array() + reach, near_vertices, near_triangles);
     const fcl::Transform3d X = a.transform();
@@ -340,7 +338,7 @@ struct RigidContactFinder::Impl {
       // A body's centre behind a face is on the solid's side of it: that face is the far
       // side of a wall (the bowl's outside, seen from its cavity); the near side answers.
       const double s = m.dot(a.x - tri.a);
-      if (s < 0 || s - reachOf(a) > margin) continue;
+      if (s < 0 || s - a.bounding_radius > margin) continue;
       const Eigen::Vector3d m_body = a.q.inverse() * m;
       // An upper bound of the body's support without a power: its bounding box's, Σ aᵢ|mᵢ|,
       // and where both exponents are ≥ 1 (the shape inside its ellipsoid) the ellipsoid's,
@@ -369,7 +367,8 @@ struct RigidContactFinder::Impl {
         const Eigen::Vector3d gap =
             d >= 0 ? Eigen::Vector3d(w_a - w_b) : Eigen::Vector3d(w_b - w_a);
         const double length = gap.norm();
-        const Eigen::Vector3d n = length > 1e-9 * reachOf(a) ? Eigen::Vector3d(gap / length) : m;
+        const Eigen::Vector3d n =
+            length > 1e-9 * a.bounding_radius ? Eigen::Vector3d(gap / length) : m;
         out.push_back(contactAt(a, i, nullptr, -1, d, w_a, w_b, n));
         continue;
       }

@@ -51,6 +51,8 @@ struct RigidBody {
   void applyPositionImpulse(const Eigen::Vector3d& p, const Eigen::Vector3d& r);
   /// A velocity impulse p at world offset r: v += p/m, ω += I⁻¹(r × p).
   void applyVelocityImpulse(const Eigen::Vector3d& p, const Eigen::Vector3d& r);
+  /// A bound on the speed of any point of the body: |v| + |ω|·bounding_radius.
+  double pointSpeedBound() const { return v.norm() + omega.norm() * bounding_radius; }
   /// The velocity of the material point at world offset r.
   Eigen::Vector3d velocityAt(const Eigen::Vector3d& r) const { return v + omega.cross(r); }
   /// ½mv² + ½ωᵀIω.

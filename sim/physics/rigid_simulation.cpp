@@ -56,8 +56,7 @@ void RigidSimulation::step() {
       travel_.resize(bodies_.size());
       for (std::size_t i = 0; i < bodies_.size(); ++i) {
         const RigidBody& b = bodies_[i];
-        const double speed = b.v.norm() + b.omega.norm() * b.bounding_radius;
-        travel_[i] = b.fixed() ? 0 : 2 * (speed * h + gravity_.norm() * h * h);
+        travel_[i] = b.fixed() ? 0 : 2 * (b.pointSpeedBound() * h + gravity_.norm() * h * h);
       }
       finder_->find(bodies_, scene_.rigid_contact->tolerance, travel_, contacts_);
     }
@@ -138,7 +137,7 @@ double RigidSimulation::maxSpeed() const {
   double speed = 0;
   for (const RigidBody& b : bodies_) {
     if (b.fixed()) continue;
-    speed = std::max(speed, b.v.norm() + b.omega.norm() * b.bounding_radius);
+    speed = std::max(speed, b.pointSpeedBound());
   }
   return speed;
 }
