@@ -133,11 +133,29 @@ def shaded(polys, base):
     return out
 
 
+def plot_frames(frames_dir, frames, path, suptitle, row_height, dpi, draw):
+    """One 3-D panel per snapshot file, three to a row, titled by its time; draw(ax, file)
+    fills a panel."""
+    cols = min(3, len(frames))
+    rows = math.ceil(len(frames) / cols)
+    fig = plt.figure(figsize=(5 * cols, row_height * rows))
+    for k, name in enumerate(frames):
+        ax = fig.add_subplot(rows, cols, k + 1, projection="3d")
+        draw(ax, os.path.join(frames_dir, name))
+        ax.set_axis_off()
+        t = float(name.split("_")[1].rsplit(".", 1)[0])
+        ax.set_title(f"t = {t:g} s", fontsize=10)
+    fig.suptitle(suptitle)
+    fig.tight_layout()
+    fig.savefig(path, dpi=dpi)
+    plt.close(fig)
+
+
 def plot_pictures(run_dir, run, path, model="exact"):
     frames_dir = os.path.join(run_dir, model, "frames")
     if not os.path.isdir(frames_dir):
         return False
-    frames = sorted(os.listdir(frames_dir))
+    frames = sorted(f for f in os.listdir(frames_dir) if f.startswith("cloth_"))
     if not frames:
         return False
     shape_v, shape_f = read_obj(os.path.join(run_dir, "shapes.obj"))
@@ -145,12 +163,9 @@ def plot_pictures(run_dir, run, path, model="exact"):
     # matplotlib's painter's algorithm would otherwise draw facets through it.
     centre = [sum(v[k] for v in shape_v) / len(shape_v) for k in range(3)]
     shape_v = [tuple(centre[k] + 0.98 * (v[k] - centre[k]) for k in range(3)) for v in shape_v]
-    cols = min(3, len(frames))
-    rows = math.ceil(len(frames) / cols)
-    fig = plt.figure(figsize=(5 * cols, 3.8 * rows))
-    for k, name in enumerate(frames):
-        ax = fig.add_subplot(rows, cols, k + 1, projection="3d")
-        cloth_v, cloth_f = read_obj(os.path.join(frames_dir, name))
+
+    def draw(ax, frame):
+        cloth_v, cloth_f = read_obj(frame)
         # One collection, so that matplotlib depth-sorts the shape's and the cloth's faces
         # together; flat shading by hand (Debian's matplotlib has no `shade`).
         polys = [[shape_v[i] for i in f] for f in shape_f] + [[cloth_v[i] for i in f] for f in cloth_f]
@@ -161,13 +176,9 @@ def plot_pictures(run_dir, run, path, model="exact"):
         ax.set_zlim(-3.5, 3)
         ax.set_box_aspect((10, 10, 6.5))
         ax.view_init(elev=25, azim=-60)
-        ax.set_axis_off()
-        t = float(name.split("_")[1].rsplit(".", 1)[0])
-        ax.set_title(f"t = {t:g} s", fontsize=10)
-    fig.suptitle(f"{run['scene']['name']} ({LABEL.get(model, model)})")
-    fig.tight_layout()
-    fig.savefig(path, dpi=90)
-    plt.close(fig)
+
+    plot_frames(frames_dir, frames, path, f"{run['scene']['name']} ({LABEL.get(model, model)})",
+                3.8, 90, draw)
     return True
 
 
@@ -184,12 +195,9 @@ def plot_bodies(run_dir, run, path, model="exact"):
     bowl_polys = [[bowl_v[i] for i in f] for f in bowl_f if all(bowl_v[i][1] > 0 for i in f)]
     lo = [min(v[k] for v in bowl_v) for k in range(3)]
     hi = [max(v[k] for v in bowl_v) for k in range(3)]
-    cols = min(3, len(frames))
-    rows = math.ceil(len(frames) / cols)
-    fig = plt.figure(figsize=(5 * cols, 4.2 * rows))
-    for k, name in enumerate(frames):
-        ax = fig.add_subplot(rows, cols, k + 1, projection="3d")
-        body_v, body_f = read_obj(os.path.join(frames_dir, name))
+
+    def draw(ax, frame):
+        body_v, body_f = read_obj(frame)
         polys = bowl_polys + [[body_v[i] for i in f] for f in body_f]
         base = [(0.75, 0.75, 0.78)] * len(bowl_polys) + [(0.85, 0.45, 0.25)] * len(body_f)
         ax.add_collection3d(Poly3DCollection(polys, facecolors=shaded(polys, base), edgecolor="none"))
@@ -199,13 +207,9 @@ def plot_bodies(run_dir, run, path, model="exact"):
         ax.set_zlim(lo[2], top)
         ax.set_box_aspect((hi[0] - lo[0], hi[1] - lo[1], top - lo[2]))
         ax.view_init(elev=20, azim=-90)
-        ax.set_axis_off()
-        t = float(name.split("_")[1].rsplit(".", 1)[0])
-        ax.set_title(f"t = {t:g} s", fontsize=10)
-    fig.suptitle(f"{run['scene']['name']} ({label(run, model)})")
-    fig.tight_layout()
-    fig.savefig(path, dpi=80)
-    plt.close(fig)
+
+    plot_frames(frames_dir, frames, path, f"{run['scene']['name']} ({label(run, model)})", 4.2, 80,
+                draw)
     return True
 
 
