@@ -2,10 +2,11 @@
 # Installs what is missing, builds the scene runner, runs the scenes and reports them.
 #   scripts/scenes.sh            the quick variant (about a minute after the build): the 3,240-
 #                                vertex cloth for 2 s with every contact model and the Bullet
-#                                peer, and the bowl of 50 bodies for 3 s with every model;
+#                                peer, and the bowl of 50 bodies for 3 s with every model and
+#                                the Bullet peer;
 #                                tables, plots and pictures in out/scenes/{cloth_3240,bowl_50}/
 #   scripts/scenes.sh --full     both cloths (3,240 and 6,460 vertices) for the scenes' 10 s and
-#                                the bowl for its 15 s (about 7 minutes on 2 cores); writes
+#                                the bowl for its 15 s (about 10 minutes on 2 cores); writes
 #                                docs/scenes.md's results, docs/scenes/*.png and the README's
 #                                scenes block
 #   scripts/scenes.sh ARGS...    fse_sim with these arguments (--help lists them)
@@ -16,7 +17,7 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build --parallel "$(nproc)" --target fse_sim
 sim=build/sim/fse_sim
 every=(--contact exact paper mesh --peer --snapshots 0 1 2 3 5 10)
-bowl=(--contact exact vertices paper --snapshots 0 1 2 4 8 15)
+bowl=(--contact exact vertices paper mesh --peer --snapshots 0 1 2 4 8 15)
 # The commit a run was made at, for its report's stamp (uncommitted changes marked).
 record_commit() {
   if commit=$(git describe --always --dirty 2>/dev/null); then echo "$commit" > "$1/commit"; fi

@@ -17,6 +17,7 @@
 #include <iostream>
 #include <thread>
 
+#include "peer/bullet_bodies.h"
 #include "peer/bullet_cloth.h"
 #include "physics/cloth_simulation.h"
 #include "physics/rigid_simulation.h"
@@ -102,11 +103,11 @@ RunSummary runModel(const Scene& scene, ContactModel model, const Options& optio
 }
 
 /// The bodies at one moment as one OBJ file (each body's tessellation at its pose).
-void writeBodiesObj(const std::string& path, const RigidSimulation& sim) {
+void writeBodiesObj(const std::string& path, const std::vector<RigidBody>& bodies) {
   std::ofstream out(path);
   out.precision(7);
   int offset = 1;
-  for (const RigidBody& body : sim.bodies()) {
+  for (const RigidBody& body : bodies) {
     const fse::TriangleMesh<double> mesh = fse::tessellate(*body.shape, 162);
     for (const auto& v : mesh.vertices) {
       const Eigen::Vector3d w = body.toWorld(v);
@@ -139,23 +140,22 @@ std::string bodiesFrameName(double t) {
   return name;
 }
 
-RunSummary runRigidModel(const Scene& scene, ContactModel model, const Options& options, long steps,
-                         const fs::path& dir, fse::support::ProgressBar& progress) {
-  SimulationOptions contact;
-  contact.model = model;
-  contact.threads = options.threads;
-  RigidSimulation sim(scene, contact);
+/// Steps a rigid-body scene's simulation (ours, any model, or the Bullet peer) and measures it
+/// on the exact surfaces after every step, outside the timed step.
+template <typename Simulation>
+RunSummary runRigid(Simulation& sim, const std::string& name, const Scene& scene,
+                    const Options& options, long steps, const fs::path& dir,
+                    fse::support::ProgressBar& progress) {
   fs::create_directories(dir / "frames");
   const std::vector<long> snapshot = snapshotSteps(options.snapshots, scene);
   const double tolerance = scene.rigid_contact ? scene.rigid_contact->tolerance : 0.0;
   std::vector<StepRecord> records;
   records.reserve(std::size_t(steps));
   if (std::count(snapshot.begin(), snapshot.end(), 0L)) {
-    writeBodiesObj((dir / "frames" / bodiesFrameName(0)).string(), sim);
+    writeBodiesObj((dir / "frames" / bodiesFrameName(0)).string(), sim.bodies());
   }
   for (long s = 1; s <= steps; ++s) {
     sim.step();
-    // Measured on the exact surfaces, outside the timed step.
     StepRecord r;
     r.time = sim.time();
     r.seconds = sim.lastStepTimes();
@@ -165,12 +165,12 @@ RunSummary runRigidModel(const Scene& scene, ContactModel model, const Options& 
     r.max_speed = sim.maxSpeed();
     records.push_back(r);
     if (std::count(snapshot.begin(), snapshot.end(), s)) {
-      writeBodiesObj((dir / "frames" / bodiesFrameName(sim.time())).string(), sim);
+      writeBodiesObj((dir / "frames" / bodiesFrameName(sim.time())).string(), sim.bodies());
     }
-    progress.advance(1, std::string(toString(model)) + ", t = " + std::to_string(sim.time()));
+    progress.advance(1, name + ", t = " + std::to_string(sim.time()));
   }
   writeStepsCsv((dir / "steps.csv").string(), sim.phases(), records);
-  RunSummary summary = summarize(toString(model), sim.phases(), records);
+  RunSummary summary = summarize(name, sim.phases(), records);
   summary.bodies = int(sim.bodies().size());
   if (scene.bowl) {
     // Inside: the centre in the bowl's bounding box (for the generated bowl, its sphere below
@@ -191,8 +191,23 @@ RunSummary runRigidModel(const Scene& scene, ContactModel model, const Options& 
   return summary;
 }
 
-RunSummary runPeer(const Scene& scene, const Options& options, long steps, const fs::path& dir,
-                   fse::support::ProgressBar& progress) {
+RunSummary runRigidModel(const Scene& scene, ContactModel model, const Options& options, long steps,
+                         const fs::path& dir, fse::support::ProgressBar& progress) {
+  SimulationOptions contact;
+  contact.model = model;
+  contact.threads = options.threads;
+  RigidSimulation sim(scene, contact);
+  return runRigid(sim, toString(model), scene, options, steps, dir, progress);
+}
+
+RunSummary runRigidPeer(const Scene& scene, const Options& options, long steps, const fs::path& dir,
+                        fse::support::ProgressBar& progress) {
+  BulletBodies peer(scene, options.threads);
+  return runRigid(peer, "bullet", scene, options, steps, dir, progress);
+}
+
+RunSummary runClothPeer(const Scene& scene, const Options& options, long steps, const fs::path& dir,
+                        fse::support::ProgressBar& progress) {
   BulletCloth peer(scene);
   const Measurer measurer(scene);
   const ClothMesh mesh = makeClothMesh(scene.cloth);
@@ -266,10 +281,11 @@ int main(int argc, char** argv) {
   app.add_option("scene", options.scene_path, "scene file (sim/scenes/*.json)")->required();
   app.add_option("--contact", options.models,
                  "contact models to run, in order: exact paper mesh (cloth scenes); exact vertices "
-                 "paper (rigid-body scenes)")
+                 "paper mesh (rigid-body scenes)")
       ->check(CLI::IsMember({"exact", "paper", "mesh", "vertices"}))
-      ->expected(1, 3);
-  app.add_flag("--peer", options.peer, "also run Bullet's soft-body cloth (the peer)");
+      ->expected(1, 4);
+  app.add_flag("--peer", options.peer,
+               "also run the Bullet peer (soft-body cloth; rigid bodies for rigid-body scenes)");
   app.add_option("--mesh-vertices", options.mesh_vertices,
                  "mesh model: vertices of the tessellation")
       ->check(CLI::Range(5, 1000000));
@@ -293,19 +309,11 @@ int main(int argc, char** argv) {
     }
     for (const std::string& name : options.models) {
       const ContactModel model = *contactModelNamed(name);
-      if (scene.isRigid() && model == ContactModel::kMesh) {
-        throw SceneError(
-            "--contact mesh: not available for rigid-body scenes yet (use exact, "
-            "vertices or paper)");
-      }
       if (!scene.isRigid() && model == ContactModel::kVertices) {
         throw SceneError(
             "--contact vertices: a rigid-body model; cloth scenes take exact, paper "
             "or mesh");
       }
-    }
-    if (scene.isRigid() && options.peer) {
-      throw SceneError("--peer: the Bullet peer of rigid-body scenes is not built yet");
     }
   } catch (const SceneError& e) {
     std::cerr << "fse_sim: error: " << e.what() << '\n';
@@ -334,7 +342,11 @@ int main(int argc, char** argv) {
                             ? runRigidModel(scene, model, options, steps, out / name, progress)
                             : runModel(scene, model, options, steps, out / name, progress));
     }
-    if (options.peer) results.push_back(runPeer(scene, options, steps, out / "bullet", progress));
+    if (options.peer) {
+      results.push_back(scene.isRigid()
+                            ? runRigidPeer(scene, options, steps, out / "bullet", progress)
+                            : runClothPeer(scene, options, steps, out / "bullet", progress));
+    }
     progress.finish();
     for (const RunSummary& s : results) summaries.push_back(toJson(s));
     writeJson((out / "run.json").string(), {{"scene", sceneJson(scene)},

@@ -12,6 +12,8 @@
 #include <limits>
 #include <thread>
 
+#include "contact/rigid_mesh_contact.h"
+
 namespace fse_sim {
 
 namespace fse = fcl_superellipsoid;
@@ -94,13 +96,18 @@ RigidContact contactAt(const RigidBody& a, int ia, const RigidBody* b, int ib, d
   return c;
 }
 
-/// Whether point p of the triangle's plane (unit normal m) lies in the triangle (edges
-/// included).
-bool overTriangle(const Eigen::Vector3d& p, const fcl::TriangleP<double>& tri,
-                  const Eigen::Vector3d& m) {
-  return m.dot((tri.b - tri.a).cross(p - tri.a)) >= 0 &&
-         m.dot((tri.c - tri.b).cross(p - tri.b)) >= 0 &&
-         m.dot((tri.a - tri.c).cross(p - tri.c)) >= 0;
+/// How far point p of the triangle's plane (unit normal m) lies outside the triangle, measured
+/// from the edges' lines: the largest of its distances beyond them (0 inside, edges included).
+double outsideTriangle(const Eigen::Vector3d& p, const fcl::TriangleP<double>& tri,
+                       const Eigen::Vector3d& m) {
+  double outside = 0;
+  const Eigen::Vector3d* corners[3] = {&tri.a, &tri.b, &tri.c};
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d& from = *corners[k];
+    const Eigen::Vector3d edge = *corners[(k + 1) % 3] - from;
+    outside = std::max(outside, -m.dot(edge.cross(p - from)) / edge.norm());
+  }
+  return outside;
 }
 
 }  // namespace
@@ -114,6 +121,7 @@ struct RigidContactFinder::Impl {
   std::vector<Eigen::Matrix3Xd> world_vertices;   ///< per body, this step
   std::unique_ptr<tbb::task_arena> arena;
   fse::BatchOptions<double> exact_options, model_options;
+  std::unique_ptr<RigidMeshContact> meshes;  ///< the mesh model's BVHs
 
   /// A unit of work whose contacts land in their own slot: a body pair, or a body and the bowl.
   struct Job {
@@ -231,6 +239,8 @@ struct RigidContactFinder::Impl {
       manifoldPoints(b, j, a, i, n, margin, out);
     }
     out.push_back(contactAt(a, i, &b, j, d, on_a, on_b, n));
+    out.back().follows_support = true;
+    out.back().support_offset = best - d;
   }
 
   /// Support points of body `from` in eight directions tilted from a centre direction (see
@@ -293,6 +303,14 @@ struct RigidContactFinder::Impl {
         found, i, b, j, [&](Eigen::Index k) { return local.col(k); }, out);
   }
 
+  /// Whether any of the bowl's triangles is in the grid's cells within body a's reach.
+  bool bowlNear(const RigidBody& a, double margin) const {
+    const double reach = a.bounding_radius + margin;
+    thread_local std::vector<int> near_vertices, near_triangles;
+    grid.query(a.x.array() - reach, a.x.array() + reach, near_vertices, near_triangles);
+    return !near_triangles.empty();
+  }
+
   void bowlContacts(const RigidBody& a, int i, double margin,
                     std::vector<RigidContact>& out) const {
     const double reach = a.bounding_radius + margin;
@@ -327,10 +345,10 @@ struct RigidContactFinder::Impl {
     // reaches down to s − h(−m) along the face's outward normal m, h its support function). On a
     // face, the body's nearest point to the plane is its support point along −m: where that point
     // lies over the triangle it is the nearest point to the triangle too (the Halfspace pair's
-    // answer). Elsewhere the triangle's nearest point is on its boundary: at a vertex (the bowl's
-    // vertices, above), or at a convex edge (a rim), where the library's superellipsoid–triangle
-    // pair answers. Across a flat or concave edge, a face beside it or a vertex is at least as
-    // near.
+    // answer; below, faces whose foot is near the triangle count too). Elsewhere the triangle's
+    // nearest point is on its boundary: at a vertex (the bowl's vertices, above), or at a convex
+    // edge (a rim), where the library's superellipsoid–triangle pair answers. Across a flat or
+    // concave edge, a face beside it or a vertex is at least as near.
     for (int t : near_triangles) {
       const fcl::TriangleP<double>& tri = triangles[std::size_t(t)];
       const Eigen::Vector3d m = bowl->normals.col(t);
@@ -375,8 +393,15 @@ struct RigidContactFinder::Impl {
       const Eigen::Vector3d p = a.toWorld(support);
       const double d = m.dot(p - tri.a);
       if (d > margin) continue;
+      // The exact model: the foot may leave the triangle during the step, so a face whose
+      // foot is within the margin of it constrains too. Beyond a concave or flat edge the
+      // face's plane lies behind the bowl's surface, so it never holds a body off the surface
+      // there; without it, a body that slides or falls fast across the faces (0.25 m a step at
+      // 15 m/s) meets faces it had no contact with until the next detection. (The vertex
+      // models keep the paper-like rule: the foot on the triangle.)
       const Eigen::Vector3d foot = p - d * m;
-      if (!overTriangle(foot, tri, m)) continue;
+      const bool exact = model == ContactModel::kExact;
+      if (outsideTriangle(foot, tri, m) > (exact ? margin : 0.0)) continue;
       RigidContact c;
       c.a = i;
       c.b = -1;
@@ -384,6 +409,7 @@ struct RigidContactFinder::Impl {
       c.n = m;
       c.r_a = support;
       c.r_b = foot;
+      c.follows_support = exact;
       out.push_back(c);
     }
   }
@@ -394,7 +420,8 @@ struct RigidContactFinder::Impl {
                const std::vector<double>& travel, ContactModel pair_model, bool measuring,
                std::vector<RigidContact>& out) {
     collectJobs(bodies, tolerance, travel);
-    const bool vertex_model = pair_model != ContactModel::kExact;
+    const bool vertex_model =
+        pair_model == ContactModel::kVertices || pair_model == ContactModel::kPaper;
     if (vertex_model) {
       world_vertices.resize(bodies.size());
       for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -403,7 +430,13 @@ struct RigidContactFinder::Impl {
       }
     }
     forEachJob([&](const Job& job, std::vector<RigidContact>& slot) {
-      if (job.b < 0) {
+      if (pair_model == ContactModel::kMesh) {
+        // FCL's mesh distance looks for the nearest of all the bowl's triangles: a body the
+        // bowl's grid finds nothing near is culled first, as the other models cull.
+        if (job.b >= 0 || bowlNear(bodies[std::size_t(job.a)], job.margin)) {
+          meshes->contacts(bodies, job.a, job.b, job.margin, slot);
+        }
+      } else if (job.b < 0) {
         bowlContacts(bodies[std::size_t(job.a)], job.a, job.margin, slot);
       } else if (vertex_model) {
         verticesAgainst(bodies, job.a, job.b, job.margin, slot);
@@ -417,6 +450,18 @@ struct RigidContactFinder::Impl {
   }
 };
 
+void followSupport(const std::vector<RigidBody>& bodies, RigidContact& c) {
+  const RigidBody& a = bodies[std::size_t(c.a)];
+  c.r_a = a.shape->supportPoint(a.q.inverse() * -c.n);
+  if (c.b >= 0) {
+    const RigidBody& b = bodies[std::size_t(c.b)];
+    c.r_b = b.shape->supportPoint(b.q.inverse() * c.n) + c.support_offset * (b.q.inverse() * c.n);
+  } else {
+    const Eigen::Vector3d p_a = a.toWorld(c.r_a);
+    c.r_b = p_a - (p_a - c.r_b).dot(c.n) * c.n;  // the foot on the same plane
+  }
+}
+
 RigidContactFinder::RigidContactFinder(const std::vector<RigidBody>& bodies, const StaticMesh* bowl,
                                        ContactModel model, int mesh_vertices, int threads)
     : impl_(std::make_unique<Impl>()) {
@@ -429,7 +474,9 @@ RigidContactFinder::RigidContactFinder(const std::vector<RigidBody>& bodies, con
                                     bowl->vertices.col(t[2]));
     }
   }
-  if (model != ContactModel::kExact) {
+  if (model == ContactModel::kMesh) {
+    impl_->meshes = std::make_unique<RigidMeshContact>(bodies, bowl, mesh_vertices);
+  } else if (model != ContactModel::kExact) {
     for (const RigidBody& body : bodies) {
       const fse::TriangleMesh<double> mesh = fse::tessellate(*body.shape, mesh_vertices);
       Eigen::Matrix3Xd v(3, long(mesh.vertices.size()));

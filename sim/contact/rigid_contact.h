@@ -10,10 +10,12 @@
 //   vertices  each body's tessellation vertices against the other's implicit surface, both
 //             ways, through the library's batched queries with the Exact solver (the paper's
 //             model: one contact per vertex within the margin);
-//   paper     the same with the paper's method at its case-study settings.
-// Against the bowl every model does the same, so that a body can neither pass between bowl
-// vertices nor through a triangle: per nearby face, the body's support point along the face's
-// normal where its foot lies on the face; at a convex (rim) triangle the library's
+//   paper     the same with the paper's method at its case-study settings;
+//   mesh      every body its tessellation, through FCL's mesh–mesh collision and distance, the
+//             bowl included (contact/rigid_mesh_contact.h): what an FCL user would do.
+// Against the bowl the library's models do the same, so that a body can neither pass between
+// bowl vertices nor through a triangle: per nearby face, the body's support point along the
+// face's normal where its foot lies on the face; at a convex (rim) triangle the library's
 // superellipsoid–triangle pair; the rim's vertices against the body's implicit surface.
 // Pairs are examined in parallel; the contacts come out in the same order for any thread count.
 
@@ -38,12 +40,23 @@ struct RigidContact {
   Eigen::Vector3d r_a{0, 0, 0}, r_b{0, 0, 0};
   Eigen::Vector3d n{0, 0, 1};
   double distance = 0;  ///< signed, m, at detection
+  /// A support contact: r_a is a's support point along −n and r_b b's along +n (moved by
+  /// support_offset along n), or for the bowl the foot of r_a on the face's plane, taken again
+  /// at the poses of every substep (followSupport) rather than kept from detection: a body that
+  /// turns during the step brings another point lowest (a spinning, pointy body another tip),
+  /// and the constraint must hold that one off. Along a fixed n, a's extent staying short of
+  /// b's (or of the plane) is what keeps them apart.
+  bool follows_support = false;
+  double support_offset = 0;  ///< m
 };
+
+/// A support contact's points at the bodies' current poses (RigidContact::follows_support).
+void followSupport(const std::vector<RigidBody>& bodies, RigidContact& c);
 
 class RigidContactFinder {
  public:
   /// `bodies` as built (their shapes and, for the vertex models, tessellations); `bowl` may be
-  /// null. The model is one of exact, vertices, paper.
+  /// null. The model is one of exact, vertices, paper, mesh.
   RigidContactFinder(const std::vector<RigidBody>& bodies, const StaticMesh* bowl,
                      ContactModel model, int mesh_vertices, int threads);
   ~RigidContactFinder();

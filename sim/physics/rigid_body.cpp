@@ -1,5 +1,7 @@
 #include "physics/rigid_body.h"
 
+#include <algorithm>
+
 #include "contact/contact_model.h"
 
 namespace fse_sim {
@@ -67,6 +69,23 @@ RigidBody makeBody(const BodySpec& spec, double density) {
   body.x_prev = body.x;
   body.q_prev = body.q;
   return body;
+}
+
+double movingEnergy(const std::vector<RigidBody>& bodies, const Eigen::Vector3d& g) {
+  double e = 0;
+  for (const RigidBody& b : bodies) {
+    if (b.fixed()) continue;
+    e += b.kineticEnergy() - b.mass * g.dot(b.x);
+  }
+  return e;
+}
+
+double maxPointSpeed(const std::vector<RigidBody>& bodies) {
+  double speed = 0;
+  for (const RigidBody& b : bodies) {
+    if (!b.fixed()) speed = std::max(speed, b.pointSpeedBound());
+  }
+  return speed;
 }
 
 }  // namespace fse_sim

@@ -64,6 +64,11 @@ struct RigidBody {
 /// A body from its spec and the scene's density.
 RigidBody makeBody(const BodySpec& spec, double density);
 
+/// Kinetic + gravitational potential energy of the moving bodies under gravity g, J.
+double movingEnergy(const std::vector<RigidBody>& bodies, const Eigen::Vector3d& g);
+/// A bound on the speed of any point of a moving body (RigidBody::pointSpeedBound), m/s.
+double maxPointSpeed(const std::vector<RigidBody>& bodies);
+
 }  // namespace fse_sim
 
 #endif  // FSE_SIM_PHYSICS_RIGID_BODY_H

@@ -59,6 +59,20 @@ void RigidSimulation::step() {
         travel_[i] = b.fixed() ? 0 : 2 * (b.pointSpeedBound() * h + gravity_.norm() * h * h);
       }
       finder_->find(bodies_, scene_.rigid_contact->tolerance, travel_, contacts_);
+      // A support contact follows the support point only where a body's turn in the step can
+      // move its points by more than half the tolerance: otherwise the point found at
+      // detection stays the lowest to well within the tolerance, and a fixed material point is
+      // what lets static friction hold a resting body (a point that follows the support lets
+      // it roll freely and rock on its faces).
+      const double tolerance = scene_.rigid_contact->tolerance;
+      auto turns = [&](int i) {
+        if (i < 0) return false;
+        const RigidBody& b = bodies_[std::size_t(i)];
+        return b.omega.norm() * h * b.bounding_radius > 0.5 * tolerance;
+      };
+      for (RigidContact& c : contacts_) {
+        c.follows_support = c.follows_support && (turns(c.a) || turns(c.b));
+      }
     }
     const int n = scene_.time.substeps;
     for (int s = 0; s < n; ++s) substep(h / n);
@@ -68,8 +82,12 @@ void RigidSimulation::step() {
 
 void RigidSimulation::substep(double h) {
   if (solver_) {
-    // The contacts' normal velocities before the substep (restitution), timed as contact work.
+    // Support contacts at the substep's poses, and the contacts' normal velocities before it
+    // (restitution), timed as contact work.
     ScopedPhase timer(times_, Phase::kContactConstraints);
+    for (RigidContact& c : contacts_) {
+      if (c.follows_support) followSupport(bodies_, c);
+    }
     solver_->begin(bodies_, contacts_);
   }
   {
@@ -124,23 +142,9 @@ void RigidSimulation::substep(double h) {
   }
 }
 
-double RigidSimulation::energy() const {
-  double e = 0;
-  for (const RigidBody& b : bodies_) {
-    if (b.fixed()) continue;
-    e += b.kineticEnergy() - b.mass * gravity_.dot(b.x);
-  }
-  return e;
-}
+double RigidSimulation::energy() const { return movingEnergy(bodies_, gravity_); }
 
-double RigidSimulation::maxSpeed() const {
-  double speed = 0;
-  for (const RigidBody& b : bodies_) {
-    if (b.fixed()) continue;
-    speed = std::max(speed, b.pointSpeedBound());
-  }
-  return speed;
-}
+double RigidSimulation::maxSpeed() const { return maxPointSpeed(bodies_); }
 
 double RigidSimulation::leastDistance(double reach) const {
   return measure_->leastDistance(bodies_, reach);

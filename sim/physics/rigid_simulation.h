@@ -23,7 +23,7 @@ namespace fse_sim {
 
 class RigidSimulation {
  public:
-  /// options.model: exact, vertices or paper (contact/rigid_contact.h).
+  /// options.model: exact, vertices, paper or mesh (contact/rigid_contact.h).
   RigidSimulation(const Scene& scene, const SimulationOptions& options = {});
 
   /// Advances by one step (Scene::time.step).
