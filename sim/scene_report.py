@@ -265,7 +265,7 @@ def rigid_section(run_dir, run, target, rel, name):
                           f"collision detection {ms('exact', 'collision_detection') / ms(other, 'collision_detection'):.2f}")
     ratio = ("Ratios in this run: " + "; ".join(ratios) + ".") if ratios else ""
     section = [f"### {name}: {s['bodies']} rigid superellipsoids, a bowl of {s['bowl_vertices']:,} vertices",
-               "", f"Bodies of {s['body_mesh_vertices']} vertices (the vertex models); step {s['step']:.5g} s, "
+               "", f"Bodies of {s['body_mesh_vertices']} vertices (the vertex and mesh models); step {s['step']:.5g} s, "
                f"{s['substeps']} substeps, {s['duration']:g} s simulated, tolerance {tol:g} m; effects: "
                f"{', '.join(s['effects'])}.", "", timing, "", accuracy, "", ratio, "",
                f"![step time]({rel}step_time_{name}.png)", "",

@@ -15,7 +15,8 @@
 //             bowl included (contact/rigid_mesh_contact.h): what an FCL user would do.
 // Against the bowl the library's models do the same, so that a body can neither pass between
 // bowl vertices nor through a triangle: per nearby face, the body's support point along the
-// face's normal where its foot lies on the face; at a convex (rim) triangle the library's
+// face's normal where its foot lies on the face (for the exact model, within the margin of it);
+// at a convex (rim) triangle the library's
 // superellipsoid–triangle pair; the rim's vertices against the body's implicit surface.
 // Pairs are examined in parallel; the contacts come out in the same order for any thread count.
 
