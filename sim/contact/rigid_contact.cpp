@@ -81,21 +81,6 @@ void appendPointContacts(const std::vector<fse::VertexContact<double>>& found, i
   }
 }
 
-/// One contact from the witnesses w_a, w_b of a signed distance d between body a and the other
-/// side (body b, or the bowl), a separating along n.
-RigidContact contactAt(const RigidBody& a, int ia, const RigidBody* b, int ib, double d,
-                       const Eigen::Vector3d& w_a, const Eigen::Vector3d& w_b,
-                       const Eigen::Vector3d& n) {
-  RigidContact c;
-  c.a = ia;
-  c.b = ib;
-  c.distance = d;
-  c.n = n;
-  c.r_a = a.q.inverse() * (w_a - a.x);
-  c.r_b = b != nullptr ? Eigen::Vector3d(b->q.inverse() * (w_b - b->x)) : w_b;
-  return c;
-}
-
 /// How far point p of the triangle's plane (unit normal m) lies outside the triangle, measured
 /// from the edges' lines: the largest of its distances beyond them (0 inside, edges included).
 double outsideTriangle(const Eigen::Vector3d& p, const fcl::TriangleP<double>& tri,
@@ -449,6 +434,19 @@ struct RigidContactFinder::Impl {
     for (const auto& slot : slots) out.insert(out.end(), slot.begin(), slot.end());
   }
 };
+
+RigidContact contactAt(const RigidBody& a, int ia, const RigidBody* b, int ib, double d,
+                       const Eigen::Vector3d& w_a, const Eigen::Vector3d& w_b,
+                       const Eigen::Vector3d& n) {
+  RigidContact c;
+  c.a = ia;
+  c.b = ib;
+  c.distance = d;
+  c.n = n;
+  c.r_a = a.q.inverse() * (w_a - a.x);
+  c.r_b = b != nullptr ? Eigen::Vector3d(b->q.inverse() * (w_b - b->x)) : w_b;
+  return c;
+}
 
 void followSupport(const std::vector<RigidBody>& bodies, RigidContact& c) {
   const RigidBody& a = bodies[std::size_t(c.a)];

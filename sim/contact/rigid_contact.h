@@ -51,6 +51,12 @@ struct RigidContact {
   double support_offset = 0;  ///< m
 };
 
+/// The contact of body a (index ia) with body b (index ib; b null and ib = −1: the bowl) from
+/// world points w_a on a and w_b on b at signed distance d, a separating along n.
+RigidContact contactAt(const RigidBody& a, int ia, const RigidBody* b, int ib, double d,
+                       const Eigen::Vector3d& w_a, const Eigen::Vector3d& w_b,
+                       const Eigen::Vector3d& n);
+
 /// A support contact's points at the bodies' current poses (RigidContact::follows_support).
 void followSupport(const std::vector<RigidBody>& bodies, RigidContact& c);
 

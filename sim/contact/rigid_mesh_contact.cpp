@@ -58,18 +58,6 @@ void RigidMeshContact::contacts(const std::vector<RigidBody>& bodies, int i, int
   const fcl::Transform3d X_a = a.transform();
   const fcl::Transform3d X_b = b != nullptr ? b->transform() : fcl::Transform3d::Identity();
   const Eigen::Matrix3d R_a = X_a.linear(), R_b = X_b.linear();
-  auto contactAt = [&](const Eigen::Vector3d& p_a, const Eigen::Vector3d& p_b,
-                       const Eigen::Vector3d& n, double d) {
-    RigidContact c;
-    c.a = i;
-    c.b = j;
-    c.distance = d;
-    c.n = n;
-    c.r_a = a.q.inverse() * (p_a - a.x);
-    c.r_b = b != nullptr ? Eigen::Vector3d(b->q.inverse() * (p_b - b->x)) : p_b;
-    out.push_back(c);
-  };
-
   fcl::CollisionRequestd request(kMaxContactsPerPair, true);
   fcl::CollisionResultd result;
   fcl::collide(mesh_a.bvh.get(), X_a, mesh_b.bvh.get(), X_b, request, result);
@@ -84,7 +72,8 @@ void RigidMeshContact::contacts(const std::vector<RigidBody>& bodies, int i, int
       const double along_b = std::abs(contact.normal.dot(n_b));
       const Eigen::Vector3d n = along_a > along_b ? Eigen::Vector3d(-n_a) : n_b;
       const double depth = contact.penetration_depth;
-      contactAt(contact.pos - 0.5 * depth * n, contact.pos + 0.5 * depth * n, n, -depth);
+      out.push_back(contactAt(a, i, b, j, -depth, contact.pos - 0.5 * depth * n,
+                              contact.pos + 0.5 * depth * n, n));
     }
     return;
   }
@@ -101,7 +90,7 @@ void RigidMeshContact::contacts(const std::vector<RigidBody>& bodies, int i, int
   const Eigen::Vector3d n = length > 1e-12
                                 ? Eigen::Vector3d(gap / length)
                                 : Eigen::Vector3d(-(R_a * mesh_a.normals.col(distance_result.b1)));
-  contactAt(w_a, w_b, n, d);
+  out.push_back(contactAt(a, i, b, j, d, w_a, w_b, n));
 }
 
 }  // namespace fse_sim
