@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "bt_superellipsoid_shape.h"
+#include "physics/rigid_contact_solver.h"
 
 namespace fse_sim {
 
@@ -69,7 +70,7 @@ BulletBodies::BulletBodies(const Scene& scene, int threads)
                                          times_);
   w.world->setGravity(support::toBt(gravity_));
   // Matched to our solver: its Gauss–Seidel sweeps per substep.
-  w.world->getSolverInfo().m_numIterations = 4;
+  w.world->getSolverInfo().m_numIterations = RigidContactSolver::kPositionIterations;
   // Bullet combines two bodies' coefficients by their product: each gets the square root, so
   // that every pair has the scene's.
   const double friction = scene.friction ? std::sqrt(scene.friction->dynamic) : 0;

@@ -37,6 +37,13 @@ namespace fse_sim {
 
 class RigidContactSolver {
  public:
+  /// Gauss–Seidel sweeps of the position pass per substep: one sweep leaves the contacts of a
+  /// body resting on a face fighting (a correction at one corner tips the body onto the
+  /// opposite one), which rocks it and inflates the normal impulses friction is measured by.
+  /// (Six or eight stilled the bowl's last jittering body, but not the small bowl's bodies of
+  /// the tests: docs/scenes.md → "Limitations (rigid bodies)".)
+  static constexpr int kPositionIterations = 4;
+
   explicit RigidContactSolver(const Scene& scene);
 
   /// Starts a substep: the contacts' normal velocities before it (for restitution).
@@ -63,10 +70,6 @@ class RigidContactSolver {
   std::vector<double> vn_before_;  ///< per contact
   std::vector<int> active_;        ///< contacts resolved in the position pass
   std::vector<double> lambda_n_;   ///< per contact: its normal impulse this substep (N·s²)
-  /// Gauss–Seidel sweeps of the position pass per substep: one sweep leaves the contacts of a
-  /// body resting on a face fighting (a correction at one corner tips the body onto the
-  /// opposite one), which rocks it and inflates the normal impulses friction is measured by.
-  static constexpr int kPositionIterations = 4;
   static constexpr double kMaxDepenetrationSpeed = 1.0;  ///< m/s
   std::vector<double> budget_, pushed_;  ///< per contact: how far it may push, and has (m)
 };

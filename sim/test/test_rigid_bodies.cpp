@@ -71,7 +71,7 @@ TEST(RigidBodiesTest, SlidingAcceleratesAtGTimesSinMinusMuCos) {
   // θ = 30°, μ = 0.2: a = g(sin θ − μ cos θ) = 3.206 m/s², s(1 s) = a/2 = 1.603 m. The vertex
   // model holds the slider's face at many points. (The exact model holds a face on its manifold
   // of support points, which lets a sliding box ride on one corner: docs/scenes.md →
-  // "Limitations".) Within 5 %: four Gauss–Seidel sweeps per substep leave the face's normal
+  // "Limitations".) Within 5 %: the Gauss–Seidel sweeps per substep leave the face's normal
   // impulse a little short of the weight (each contact alone also turns the body, so it pushes
   // less than the whole sink), and the friction it bounds with it.
   const double t = 30 * M_PI / 180, mu = 0.2;
