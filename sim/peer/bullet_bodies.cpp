@@ -42,13 +42,14 @@ struct BulletBodies::World {
   btDbvtBroadphase broadphase;
   btSequentialImpulseConstraintSolver solver;
   std::unique_ptr<TimedWorld> world;
-  std::vector<std::unique_ptr<btCollisionShape>> shapes;
-  std::vector<std::unique_ptr<btDefaultMotionState>> motion_states;
-  std::vector<std::unique_ptr<btRigidBody>> bodies;  ///< the scene's, then the bowl
-  // The bowl's triangles as Bullet reads them (it keeps pointers into these).
+  // The bowl's triangles as Bullet reads them (its shape keeps pointers into these: declared
+  // before the shapes, they outlive them).
   std::vector<btScalar> bowl_vertices;
   std::vector<int> bowl_indices;
   std::unique_ptr<btTriangleIndexVertexArray> bowl_array;
+  std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  std::vector<std::unique_ptr<btDefaultMotionState>> motion_states;
+  std::vector<std::unique_ptr<btRigidBody>> bodies;  ///< the scene's, then the bowl
 
   ~World() {
     for (auto& body : bodies) world->removeRigidBody(body.get());
