@@ -220,17 +220,24 @@ def rest_time(steps):
     return moving[-1] if moving else 0.0
 
 
-def rigid_tables(run_dir, run):
-    """The paper's Table 7 layout with its values beside ours, and what each model got right."""
-    runs = {r["model"]: r for r in run["runs"]}
-    models = [m for m in ("exact", "vertices", "paper", "mesh", "bullet") if m in runs]
+def phase_table(run, runs, models, paper):
+    """The ms-per-phase table's lines: the paper's column, then each model's; a phase no run
+    has and the paper does not list is left out."""
     head = "| ms per step | paper (its machine) | " + " | ".join(label(run, m) for m in models) + " |"
     lines = [head, "|---" * (2 + len(models)) + "|"]
     for key, name in PHASES:
         cells = [fmt(runs[m]["mean_ms"].get(key)) for m in models]
-        if not any(cells) and key not in PAPER_RIGID:
+        if not any(cells) and key not in paper:
             continue
-        lines.append(f"| {name} | {fmt(PAPER_RIGID.get(key))} | " + " | ".join(cells) + " |")
+        lines.append(f"| {name} | {fmt(paper.get(key))} | " + " | ".join(cells) + " |")
+    return lines
+
+
+def rigid_tables(run_dir, run):
+    """The paper's Table 7 layout with its values beside ours, and what each model got right."""
+    runs = {r["model"]: r for r in run["runs"]}
+    models = [m for m in ("exact", "vertices", "paper", "mesh", "bullet") if m in runs]
+    lines = phase_table(run, runs, models, PAPER_RIGID)
     tol = run["scene"]["tolerance"]
     acc = ["| measured on the exact surfaces | " + " | ".join(label(run, m) for m in models) + " |",
            "|---" * (1 + len(models)) + "|"]
@@ -293,13 +300,7 @@ def tables(run):
     paper = PAPER.get(n, {})
     runs = {r["model"]: r for r in run["runs"]}
     models = [m for m in ("exact", "paper", "mesh", "bullet") if m in runs]
-    head = "| ms per step | paper (its machine) | " + " | ".join(LABEL[m] for m in models) + " |"
-    lines = [head, "|---" * (2 + len(models)) + "|"]
-    for key, name in PHASES:
-        cells = [fmt(runs[m]["mean_ms"].get(key)) for m in models]
-        if not any(cells) and key not in paper:
-            continue
-        lines.append(f"| {name} | {fmt(paper.get(key))} | " + " | ".join(cells) + " |")
+    lines = phase_table(run, runs, models, paper)
     if "collision_detection" in runs.get("exact", {}).get("mean_ms", {}):
         ex = runs["exact"]["mean_ms"]
         lines.append(f"| collision / total | {fmt(100 * paper['collision_detection'] / paper['total'], 0) + ' %' if paper else ''} | "
