@@ -21,33 +21,36 @@ WorldPlane<S> toWorld(const Vector3<S>& n_O, S d_O, const fcl::Transform3<S>& X_
   return {n, d_O + n.dot(X_WO.translation())};
 }
 
-/// The shape's extreme point along −n (side = −1) or +n (side = +1), its signed distance to the
-/// plane's side facing it, and the hit.
+/// The hit of the plane's side `side` (+1: the side n points to, a halfspace's outside; −1: the
+/// other side of a plane), given the shape's extreme point p along −side·n: its signed distance
+/// to that side, the foot on the plane, and the direction from the shape to the plane.
 template <typename S>
-PairHit<S> sideHit(const Pair<S>& pair, const WorldPlane<S>& plane, S side) {
+PairHit<S> sideHit(const WorldPlane<S>& plane, S side, const Vector3<S>& p) {
   const Vector3<S> toward = -side * plane.n;  // from the shape to the plane, when separated
-  const Vector3<S> p =
-      *pair.X_WS * pair.shape->supportPoint(Vector3<S>(pair.X_WS->linear().transpose() * toward));
   const S distance = side * (plane.n.dot(p) - plane.d);
-  const Vector3<S> on_plane = p + distance * toward;
-  return {distance, on_plane, p, toward, -1};
+  return {distance, Vector3<S>(p + distance * toward), p, toward, -1};
 }
 
 }  // namespace
 
 template <typename S>
 std::optional<PairHit<S>> halfspaceHit(const Pair<S>& pair) {
-  if (const auto* h = dynamic_cast<const fcl::Halfspace<S>*>(pair.other)) {
-    return sideHit(pair, toWorld(h->n, h->d, *pair.X_WO), S(1));
-  }
-  if (const auto* plane = dynamic_cast<const fcl::Plane<S>*>(pair.other)) {
-    const WorldPlane<S> w = toWorld(plane->n, plane->d, *pair.X_WO);
-    const PairHit<S> above = sideHit(pair, w, S(1)), below = sideHit(pair, w, S(-1));
-    // Above: lowest − d; below: d − highest. Separated on one side, that one is positive and
-    // the other is negative; straddling, both are ≤ 0 and the larger is the shorter way out.
-    return above.distance >= below.distance ? above : below;
-  }
-  return std::nullopt;
+  const auto* halfspace = geometryAs<fcl::Halfspace<S>>(pair.other, fcl::GEOM_HALFSPACE);
+  const auto* plane = geometryAs<fcl::Plane<S>>(pair.other, fcl::GEOM_PLANE);
+  if (halfspace == nullptr && plane == nullptr) return std::nullopt;
+  const WorldPlane<S> w = halfspace != nullptr ? toWorld(halfspace->n, halfspace->d, *pair.X_WO)
+                                               : toWorld(plane->n, plane->d, *pair.X_WO);
+  // The shape's lowest point along n, in its frame; the shape is symmetric about its centre,
+  // so its highest point is the mirror image, and one support point serves both sides.
+  const Vector3<S> low_S =
+      pair.shape->supportPoint(Vector3<S>(-(pair.X_WS->linear().transpose() * w.n)));
+  const Vector3<S> low = *pair.X_WS * low_S;
+  if (halfspace != nullptr) return sideHit(w, S(1), low);
+  const Vector3<S> high = *pair.X_WS * Vector3<S>(-low_S);
+  const PairHit<S> above = sideHit(w, S(1), low), below = sideHit(w, S(-1), high);
+  // Above: lowest − d; below: d − highest. Separated on one side, that one is positive and
+  // the other is negative; straddling, both are ≤ 0 and the larger is the shorter way out.
+  return above.distance >= below.distance ? above : below;
 }
 
 #define FSE_INSTANTIATE_HALFSPACE_HIT(S) \

@@ -86,12 +86,15 @@ PairHit<S> ccdHit(const Pair<S>& pair, const Other& other) {
 
 template <typename S>
 std::optional<PairHit<S>> libccdHit(const Pair<S>& pair) {
-  if (const auto* o = dynamic_cast<const fcl::Box<S>*>(pair.other)) return ccdHit(pair, *o);
-  if (const auto* o = dynamic_cast<const fcl::Capsule<S>*>(pair.other)) return ccdHit(pair, *o);
-  if (const auto* o = dynamic_cast<const fcl::Cylinder<S>*>(pair.other)) return ccdHit(pair, *o);
-  if (const auto* o = dynamic_cast<const fcl::Cone<S>*>(pair.other)) return ccdHit(pair, *o);
-  if (const auto* o = dynamic_cast<const fcl::Convex<S>*>(pair.other)) return ccdHit(pair, *o);
-  if (const auto* o = dynamic_cast<const fcl::TriangleP<S>*>(pair.other)) {
+  if (const auto* o = geometryAs<fcl::Box<S>>(pair.other, fcl::GEOM_BOX)) return ccdHit(pair, *o);
+  if (const auto* o = geometryAs<fcl::Capsule<S>>(pair.other, fcl::GEOM_CAPSULE))
+    return ccdHit(pair, *o);
+  if (const auto* o = geometryAs<fcl::Cylinder<S>>(pair.other, fcl::GEOM_CYLINDER))
+    return ccdHit(pair, *o);
+  if (const auto* o = geometryAs<fcl::Cone<S>>(pair.other, fcl::GEOM_CONE)) return ccdHit(pair, *o);
+  if (const auto* o = geometryAs<fcl::Convex<S>>(pair.other, fcl::GEOM_CONVEX))
+    return ccdHit(pair, *o);
+  if (const auto* o = geometryAs<fcl::TriangleP<S>>(pair.other, fcl::GEOM_TRIANGLE)) {
     return ccdHit(pair, *o);
   }
   return std::nullopt;

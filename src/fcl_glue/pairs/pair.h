@@ -16,6 +16,21 @@
 namespace fcl_superellipsoid {
 namespace detail {
 
+/// g as FCL's geometry class T, or nullptr: its node type must be `type` and its dynamic type T
+/// (a user's geometry may report any node type). The node type is read first because a
+/// dynamic_cast that fails compares type names with strcmp across shared libraries: a chain of
+/// failing casts cost more than a halfspace pair's own arithmetic.
+template <typename T, typename S>
+const T* geometryAs(const fcl::CollisionGeometry<S>* g, fcl::NODE_TYPE type) {
+  return g->getNodeType() == type ? dynamic_cast<const T*>(g) : nullptr;
+}
+
+/// g as a Superellipsoid (node type BV_UNKNOWN), or nullptr.
+template <typename S>
+const Superellipsoid<S>* asSuperellipsoid(const fcl::CollisionGeometry<S>* g) {
+  return geometryAs<Superellipsoid<S>>(g, fcl::BV_UNKNOWN);
+}
+
 /// The pair as (superellipsoid, other), remembering the caller's order.
 template <typename S>
 struct Pair {
@@ -33,8 +48,8 @@ struct Pair {
 template <typename S>
 Pair<S> makePair(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1,
                  const fcl::CollisionGeometry<S>* o2, const fcl::Transform3<S>& tf2) {
-  const auto* s1 = dynamic_cast<const Superellipsoid<S>*>(o1);
-  const auto* s2 = dynamic_cast<const Superellipsoid<S>*>(o2);
+  const Superellipsoid<S>* s1 = asSuperellipsoid(o1);
+  const Superellipsoid<S>* s2 = asSuperellipsoid(o2);
   if (s1 != nullptr) return {o1, o2, s1, &tf1, o2, &tf2, true};
   if (s2 != nullptr && s1 == nullptr) return {o1, o2, s2, &tf2, o1, &tf1, false};
   return {o1, o2};

@@ -89,30 +89,30 @@ void checkOther(const char* where, const fcl::CollisionGeometry<S>* other) {
           p);
     }
   };
-  if (const auto* x = dynamic_cast<const fcl::Sphere<S>*>(other)) {
+  if (const auto* x = geometryAs<fcl::Sphere<S>>(other, fcl::GEOM_SPHERE)) {
     length("radius", x->radius);
-  } else if (const auto* x = dynamic_cast<const fcl::Ellipsoid<S>*>(other)) {
+  } else if (const auto* x = geometryAs<fcl::Ellipsoid<S>>(other, fcl::GEOM_ELLIPSOID)) {
     for (int i = 0; i < 3; ++i) length("radii", x->radii[i]);
-  } else if (const auto* x = dynamic_cast<const fcl::Box<S>*>(other)) {
+  } else if (const auto* x = geometryAs<fcl::Box<S>>(other, fcl::GEOM_BOX)) {
     for (int i = 0; i < 3; ++i) length("side", x->side[i]);
-  } else if (const auto* x = dynamic_cast<const fcl::Capsule<S>*>(other)) {
+  } else if (const auto* x = geometryAs<fcl::Capsule<S>>(other, fcl::GEOM_CAPSULE)) {
     length("radius", x->radius);
     length("lz", x->lz);
-  } else if (const auto* x = dynamic_cast<const fcl::Cylinder<S>*>(other)) {
+  } else if (const auto* x = geometryAs<fcl::Cylinder<S>>(other, fcl::GEOM_CYLINDER)) {
     length("radius", x->radius);
     length("lz", x->lz);
-  } else if (const auto* x = dynamic_cast<const fcl::Cone<S>*>(other)) {
+  } else if (const auto* x = geometryAs<fcl::Cone<S>>(other, fcl::GEOM_CONE)) {
     length("radius", x->radius);
     length("lz", x->lz);
-  } else if (const auto* x = dynamic_cast<const fcl::Halfspace<S>*>(other)) {
+  } else if (const auto* x = geometryAs<fcl::Halfspace<S>>(other, fcl::GEOM_HALFSPACE)) {
     point("normal n", x->n);
     length("|d|", std::abs(x->d));
-  } else if (const auto* x = dynamic_cast<const fcl::Plane<S>*>(other)) {
+  } else if (const auto* x = geometryAs<fcl::Plane<S>>(other, fcl::GEOM_PLANE)) {
     point("normal n", x->n);
     length("|d|", std::abs(x->d));
-  } else if (const auto* x = dynamic_cast<const fcl::Convex<S>*>(other)) {
+  } else if (const auto* x = geometryAs<fcl::Convex<S>>(other, fcl::GEOM_CONVEX)) {
     for (const Vector3<S>& v : x->getVertices()) point("vertex", v);
-  } else if (const auto* x = dynamic_cast<const fcl::TriangleP<S>*>(other)) {
+  } else if (const auto* x = geometryAs<fcl::TriangleP<S>>(other, fcl::GEOM_TRIANGLE)) {
     point("vertex a", x->a);
     point("vertex b", x->b);
     point("vertex c", x->c);
@@ -131,8 +131,7 @@ bool isMesh(const Pair<S>& pair) {
 template <typename S>
 bool involvesSuperellipsoid(const fcl::CollisionGeometry<S>* o1,
                             const fcl::CollisionGeometry<S>* o2) {
-  return dynamic_cast<const Superellipsoid<S>*>(o1) != nullptr ||
-         dynamic_cast<const Superellipsoid<S>*>(o2) != nullptr;
+  return asSuperellipsoid(o1) != nullptr || asSuperellipsoid(o2) != nullptr;
 }
 
 template <typename S>

@@ -90,14 +90,14 @@ template <typename S>
 std::optional<Polytope<S>> polytopeOf(const fcl::CollisionGeometry<S>* other,
                                       const fcl::Transform3<S>& X) {
   Polytope<S> p;
-  if (const auto* box = dynamic_cast<const fcl::Box<S>*>(other)) {
+  if (const auto* box = geometryAs<fcl::Box<S>>(other, fcl::GEOM_BOX)) {
     const Vector3<S> h = box->side / 2;
     for (int i = 0; i < 8; ++i) {
       p.vertices.push_back(
           X * Vector3<S>((i & 1) ? h[0] : -h[0], (i & 2) ? h[1] : -h[1], (i & 4) ? h[2] : -h[2]));
     }
     p.faces = {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}};
-  } else if (const auto* convex = dynamic_cast<const fcl::Convex<S>*>(other)) {
+  } else if (const auto* convex = geometryAs<fcl::Convex<S>>(other, fcl::GEOM_CONVEX)) {
     for (const Vector3<S>& v : convex->getVertices()) p.vertices.push_back(X * v);
     const std::vector<int>& list = convex->getFaces();
     for (std::size_t k = 0, f = 0;
@@ -106,7 +106,7 @@ std::optional<Polytope<S>> polytopeOf(const fcl::CollisionGeometry<S>* other,
       p.faces.emplace_back(list.begin() + k + 1, list.begin() + k + 1 + n);
       k += n + 1;
     }
-  } else if (const auto* t = dynamic_cast<const fcl::TriangleP<S>*>(other)) {
+  } else if (const auto* t = geometryAs<fcl::TriangleP<S>>(other, fcl::GEOM_TRIANGLE)) {
     p.vertices = {X * t->a, X * t->b, X * t->c};
     p.faces = {{0, 1, 2}};
   } else {

@@ -51,10 +51,10 @@ template <typename S>
 std::optional<Round<S>> roundOf(const fcl::CollisionGeometry<S>* other,
                                 const fcl::Transform3<S>& X) {
   Round<S> b;
-  if (const auto* c = dynamic_cast<const fcl::Cylinder<S>*>(other)) {
+  if (const auto* c = geometryAs<fcl::Cylinder<S>>(other, fcl::GEOM_CYLINDER)) {
     b = {false,     X.translation(), X.linear().col(0), X.linear().col(1), X.linear().col(2),
          c->radius, c->lz / 2};
-  } else if (const auto* c = dynamic_cast<const fcl::Cone<S>*>(other)) {
+  } else if (const auto* c = geometryAs<fcl::Cone<S>>(other, fcl::GEOM_CONE)) {
     b = {true,      X.translation(), X.linear().col(0), X.linear().col(1), X.linear().col(2),
          c->radius, c->lz / 2};
   } else {
