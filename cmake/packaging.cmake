@@ -1,11 +1,12 @@
 # How the library is installed and packaged (docs/design.md → "Packaging"):
 #   - a CMake package: find_package(fcl_superellipsoid) → fcl_superellipsoid::fcl_superellipsoid
+#     and the opt-in fcl_superellipsoid::interpose
 #   - a pkg-config file: pkg-config --cflags --libs fcl_superellipsoid
 #   - a Debian package of both: cpack -G DEB in the build tree (configure with
 #     -DCMAKE_INSTALL_PREFIX=/usr for Debian's multiarch library folder)
 include(CMakePackageConfigHelpers)
 
-install(TARGETS fcl_superellipsoid EXPORT fcl_superellipsoidTargets
+install(TARGETS fcl_superellipsoid fcl_superellipsoid_interpose EXPORT fcl_superellipsoidTargets
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}

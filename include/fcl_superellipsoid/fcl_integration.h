@@ -16,7 +16,8 @@
 ///    Registration happens once, thread-safely, when the first Superellipsoid is constructed
 ///    (or by registerWithFcl()). The plain fcl::distance(&o1, &o2, request, result) of a
 ///    Debian FCL runs inside libfcl with libfcl's private tables: it prints FCL's "not
-///    supported" warning for a Superellipsoid and returns (no crash). Results of the
+///    supported" warning for a Superellipsoid and returns (no crash), unless the opt-in
+///    interposer is linked (interpose.h). Results of the
 ///    solver-taking calls follow FCL's conventions: for shape–mesh pairs FCL calls the table
 ///    as (mesh, shape) and does not swap back, so o1/b1/nearest_points[0] refer to the mesh.
 ///

@@ -42,7 +42,8 @@ run(dpkg-deb --contents ${debs})
 set(contents "${run_output}")
 foreach(file include/fcl_superellipsoid/superellipsoid.h include/fcl_superellipsoid/export.h
         fcl_superellipsoidConfig.cmake fcl_superellipsoidTargets.cmake
-        pkgconfig/fcl_superellipsoid.pc libfcl_superellipsoid)
+        pkgconfig/fcl_superellipsoid.pc libfcl_superellipsoid libfcl_superellipsoid_interpose
+        include/fcl_superellipsoid/interpose.h)
   expect("${contents}" "${file}" "contents")
 endforeach()
 
@@ -61,6 +62,7 @@ run(${CMAKE_COMMAND} --build ${WORK_DIR}/cmake-consumer)
 run(${WORK_DIR}/cmake-consumer/consumer)
 run(${WORK_DIR}/cmake-consumer/scene)
 message(STATUS "CMake consumer: ${run_output}")
+run(${WORK_DIR}/cmake-consumer/plain_calls interposed)
 
 # 4b. Through pkg-config alone: its flags must find the unpacked headers and library.
 set(ENV{PKG_CONFIG_PATH} "${pc_dir}")
