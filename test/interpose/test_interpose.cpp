@@ -71,16 +71,16 @@ TriangleMesh<double> randomCloud(std::mt19937& rng, int n, double extent) {
   return cloud;
 }
 
-/// `apart`: whether nearest points are defined. FCL's mesh–shape distance on an overlapping
-/// pair leaves them (and with libccd even the distance, a tiny denormal) as whatever was on
-/// the stack, so only the distance is compared there.
+/// `defined`: whether FCL's answer is defined. FCL's mesh–shape distance on an overlapping pair
+/// is not: it leaves the nearest points as whatever was on the stack, and its distance and
+/// triangle indices differ between a gcc and a clang build of the same FCL code (seen: −0.05
+/// against −0.32), so only separated mesh pairs are compared (their contacts always are).
 void expectSameDistance(const fcl::DistanceResultd& a, const fcl::DistanceResultd& b,
-                        bool apart = true) {
+                        bool defined = true) {
+  if (!defined) return;
   EXPECT_EQ(a.min_distance, b.min_distance);
-  if (apart) {
-    EXPECT_EQ(a.nearest_points[0], b.nearest_points[0]);
-    EXPECT_EQ(a.nearest_points[1], b.nearest_points[1]);
-  }
+  EXPECT_EQ(a.nearest_points[0], b.nearest_points[0]);
+  EXPECT_EQ(a.nearest_points[1], b.nearest_points[1]);
   EXPECT_EQ(a.b1, b.b1);
   EXPECT_EQ(a.b2, b.b2);
 }
@@ -193,7 +193,7 @@ TEST(Interpose, OtherPairsGetLibfclsAnswerForBothSolverTypes) {
       std::make_shared<fcl::Coned>(0.5, 0.9),
       std::make_shared<fcl::Sphered>(0.35),
       makeBVHModel<fcl::OBBRSSd>(tessellate(Superellipsoidd(0.7, 0.5, 0.4, 0.6, 0.9), 200))};
-  int differing = 0, compared = 0;
+  int differing = 0, compared = 0, compared_distances = 0;
   for (int trial = 0; trial < 30; ++trial) {
     for (std::size_t i = 0; i < shapes.size(); ++i) {
       const std::size_t j = (i + 1 + trial) % shapes.size();
@@ -212,13 +212,16 @@ TEST(Interpose, OtherPairsGetLibfclsAnswerForBothSolverTypes) {
         fcl::DistanceResultd ours, theirs;
         by_type[type] = fcl::distance(&a, &b, request, ours);
         libfcl.distance(&a, &b, request, theirs);
-        expectSameDistance(ours, theirs, !cours.isCollision());
+        const bool mesh = a.getObjectType() == fcl::OT_BVH || b.getObjectType() == fcl::OT_BVH;
+        expectSameDistance(ours, theirs, !(mesh && cours.isCollision()));
+        compared_distances += !(mesh && cours.isCollision());
         ++compared;
       }
       if (by_type[0] != by_type[1]) ++differing;
     }
   }
   EXPECT_EQ(compared, 360);
+  EXPECT_GT(compared_distances, 300);
   EXPECT_GT(differing, 10);
 }
 
