@@ -30,7 +30,7 @@ bool withinCoordinateRange(const Derived& v) {
 /// Refuses a pose that is not finite or whose translation is beyond maxCoordinate():
 /// "<where>: the pose <name> must be finite, its translation at most ..., got (x, y, z)".
 template <typename S>
-void checkPose(const std::string& where, const char* name,
+void checkPose(const char* where, const char* name,
                const Eigen::Transform<S, 3, Eigen::Isometry>& pose) {
   if (!pose.matrix().allFinite() || !withinCoordinateRange(pose.translation())) {
     throwInvalidArgument(where,
