@@ -3,7 +3,8 @@
 // pair_construction.h: a known distance and known witnesses). Penetration depths of smooth pairs
 // are checked against a long-double search over the sphere of directions of the Minkowski
 // difference's support function (its supports written in pair_construction.h, from
-// docs/math.md).
+// docs/math.md); those of polytopes also against an enumeration of the polytope's features
+// (polytope_depth.h).
 
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/geometry/shape/box.h>
@@ -30,6 +31,7 @@
 
 #include "fcl_superellipsoid/fcl_integration.h"
 #include "pair_construction.h"
+#include "polytope_depth.h"
 
 namespace fcl_superellipsoid {
 namespace {
@@ -261,7 +263,7 @@ TEST(ShapePairs, ShapesWithFlatFacesAndEdgesMatchTheConstruction) {
         EXPECT_EQ(r.contacts, 1u) << partner.name << " trial " << trial;
         if (trial % 3 == 0) {  // (the search costs milliseconds)
           const LD search = -referenceDepth(supportFunction(*makeShape<double>(c.shape), c.X_WA),
-                                            supportFunction(*partner.geometry, X_WB), 4000);
+                                            supportFunction(*partner.geometry, X_WB), 2000);
           const double behind = (double(search) - r.distance) / size_max;  // > 0: ours deeper
           worst_depth[partner.name] = std::max(worst_depth[partner.name], behind);
           EXPECT_LE(behind, 1e-12) << partner.name << " trial " << trial << ": " << r.distance
@@ -276,6 +278,49 @@ TEST(ShapePairs, ShapesWithFlatFacesAndEdgesMatchTheConstruction) {
     std::cout << name << ": worst distance or witness error " << e << " × size\n";
   for (const auto& [name, e] : worst_depth)
     std::cout << name << ": most depth beyond the search's " << e << " × size\n";
+}
+
+// Overlapping polytopes (box, convex, triangle) against the depth by enumeration of the
+// polytope's faces, edges and vertices (test_support/polytope_depth.h), which does not stall on
+// F's kinks as the pattern search does. What holds for every pair: ours is a real separating
+// translation, so never shallower than the enumeration, and the enumeration is never above the
+// pattern search (a check of the reference). The 1e-9 × size is met by most pairs, not
+// all (docs/pairs.md → "What is not there yet"): the count and the worst are printed.
+TEST(ShapePairs, PolytopeOverlapsAgainstTheEnumeratedDepth) {
+  std::mt19937 rng(41);
+  std::uniform_real_distribution<double> gap(-0.3, -0.01), size(0.5, 5.0);
+  std::map<std::string, double> worst;
+  int checked = 0, beyond = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    const LD scale = LD(size(rng));
+    const Construction c = constructShape(rng, scale);
+    for (const FlatPartner& partner : flatPartners(rng, scale)) {
+      const std::string name = partner.name;
+      const LD d = LD(gap(rng)) * scale * LD(0.1);
+      const fcl::Transform3d X_WB = placePartner(c, d, partner.b_L, partner.m_L, rng);
+      // Box, convex, triangle; not the face variants (exact in the other tests: a face's
+      // normal is a candidate), nor the round shapes (not polytopes).
+      if (name != "box" && name != "convex" && name != "triangle") continue;
+      const double size_max = 2 * double(scale);
+      const Answer r =
+          ask<double>(makeShape<double>(c.shape), c.X_WA, partner.geometry, X_WB, 1e-4 * size_max);
+      const auto h_a = supportFunction(*makeShape<double>(c.shape), c.X_WA);
+      const LD enumerated = polytopeDepth(h_a, polytopeVertices(*partner.geometry, X_WB));
+      const LD searched = referenceDepth(h_a, supportFunction(*partner.geometry, X_WB), 2000);
+      EXPECT_LE(double(enumerated), double(searched) + 1e-12 * size_max) << name << " " << trial;
+      // Our distance is −(our depth): never above −(the enumerated depth).
+      EXPECT_LE(r.distance, -double(enumerated) + 1e-12 * size_max) << name << " " << trial;
+      const double e = std::abs(r.distance + double(enumerated)) / size_max;
+      worst[name] = std::max(worst[name], e);
+      beyond += e > 1e-9;
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 60);
+  std::cout << beyond << " of " << checked << " overlaps deeper than the enumeration by more than "
+            << "1e-9 × size\n";
+  for (const auto& [name, e] : worst)
+    std::cout << name << ": worst depth error " << e << " × size\n";
 }
 
 // Degenerate configurations stay finite and correct: touching, coincident centres, a flat face
