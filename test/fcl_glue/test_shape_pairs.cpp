@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <map>
 #include <memory>
@@ -287,11 +288,15 @@ TEST(ShapePairs, ShapesWithFlatFacesAndEdgesMatchTheConstruction) {
 // pattern search (a check of the reference). The 1e-9 × size is met by most pairs, not
 // all (docs/pairs.md → "What is not there yet"): the count and the worst are printed.
 TEST(ShapePairs, PolytopeOverlapsAgainstTheEnumeratedDepth) {
-  std::mt19937 rng(41);
+  // A larger sample for a measurement: FSE_POLYTOPE_TRIALS=60 FSE_POLYTOPE_SEED=43.
+  const char* trials_env = std::getenv("FSE_POLYTOPE_TRIALS");
+  const char* seed_env = std::getenv("FSE_POLYTOPE_SEED");
+  const int trials = trials_env != nullptr ? std::atoi(trials_env) : 20;
+  std::mt19937 rng(seed_env != nullptr ? std::atoi(seed_env) : 41);
   std::uniform_real_distribution<double> gap(-0.3, -0.01), size(0.5, 5.0);
   std::map<std::string, double> worst;
   int checked = 0, beyond = 0;
-  for (int trial = 0; trial < 20; ++trial) {
+  for (int trial = 0; trial < trials; ++trial) {
     const LD scale = LD(size(rng));
     const Construction c = constructShape(rng, scale);
     for (const FlatPartner& partner : flatPartners(rng, scale)) {
@@ -316,7 +321,7 @@ TEST(ShapePairs, PolytopeOverlapsAgainstTheEnumeratedDepth) {
       ++checked;
     }
   }
-  EXPECT_EQ(checked, 60);
+  EXPECT_EQ(checked, 3 * trials);
   std::cout << beyond << " of " << checked << " overlaps deeper than the enumeration by more than "
             << "1e-9 × size\n";
   for (const auto& [name, e] : worst)

@@ -8,7 +8,8 @@
 // v that separates the shapes, so the least one found is never shallower than the true depth; it
 // is the depth when the candidates include the minimiser. They come from the other shape's
 // features, where F is smooth: a face's normal; a vertex's (or a rim point's) escape direction,
-// the outward normal at its nearest point on the superellipsoid (the point solver); an edge's or
+// the outward normal at its nearest point on the superellipsoid (the point solver), and a
+// vertex's descent from inside its own region (offerDescent); an edge's or
 // a side's one-parameter family of directions, sampled and refined where the restricted F is
 // stationary (segment_search.h); and MPR's normal. A pattern search on the sphere then polishes
 // the best of them, where F's kinks (the other shape's supporting feature changes) leave the
@@ -50,6 +51,33 @@ class DepthCandidates {
     const PointDistanceResult<S> r =
         pointDistance(*pair_.shape, *pair_.X_WS, w, pair_.shape->queryOptions());
     offerDirection(r.normal);
+  }
+
+  /// A point w of the other shape, from a start direction: a steepest descent of
+  /// f(v) = h_A(v) − v·w on the sphere (gradient (I − vvᵀ)(s_A(v) − w), the step an angle that
+  /// grows by 1.5 on success and halves on failure), then its end offered. offerPoint gives
+  /// f's minimum over the whole sphere; where w supports the other shape only in a region
+  /// elsewhere, f may have a second local minimum inside that region, which is F's there.
+  void offerDescent(const Vector3<S>& w, const Vector3<S>& start) {
+    if (!start.allFinite() || !(start.norm() > S(0))) return;
+    Vector3<S> v = start.normalized();
+    Vector3<S> a = shapeSupport(pair_, v);
+    S f = v.dot(a - w);
+    S angle = S(0.1);
+    for (int it = 0; it < kDescentSteps && angle > S(1e-6); ++it) {
+      const Vector3<S> g = (a - w) - v.dot(a - w) * v;
+      if (!(g.norm() > S(0))) break;
+      const Vector3<S> trial = (v - angle * g.normalized()).normalized();
+      const Vector3<S> a_trial = shapeSupport(pair_, trial);
+      const S f_trial = trial.dot(a_trial - w);
+      if (f_trial < f) {
+        v = trial, a = a_trial, f = f_trial;
+        angle *= S(1.5);
+      } else {
+        angle *= S(0.5);
+      }
+    }
+    offerDirection(v);
   }
 
   /// A one-parameter family of directions v(θ), θ ∈ [0, 2π), with value(θ) the function to
@@ -118,6 +146,7 @@ class DepthCandidates {
 
  private:
   static constexpr S kNone = std::numeric_limits<S>::infinity();
+  static constexpr int kDescentSteps = 60;
   const Pair<S>& pair_;
   OtherSupport other_support_;
   S f_ = S(0);

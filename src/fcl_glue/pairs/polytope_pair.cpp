@@ -180,7 +180,12 @@ PairHit<S> overlap(const Pair<S>& pair, const Polytope<S>& p, const PairHit<S>& 
   DepthCandidates<S, decltype(support)> depth(pair, support);
   depth.offerDirection(start.normal);
   for (const Vector3<S>& n : p.normals) depth.offerDirection(Vector3<S>(-n));
-  for (const Vector3<S>& w : p.vertices) depth.offerPoint(w);
+  Vector3<S> centroid = Vector3<S>::Zero();
+  for (const Vector3<S>& w : p.vertices) centroid += w / S(p.vertices.size());
+  for (const Vector3<S>& w : p.vertices) {
+    depth.offerPoint(w);
+    depth.offerDescent(w, Vector3<S>(centroid - w));  // from inside w's region
+  }
   for (const auto& [i, j] : p.edges) depth.offerEdge(p.vertices[i], p.vertices[j]);
   return depth.refinedBest();
 }
