@@ -47,10 +47,12 @@ class DepthCandidates {
   }
 
   /// A point of the other shape (a vertex, the apex, a rim point): its escape direction.
-  void offerPoint(const Vector3<S>& w) {
+  /// Returns its signed distance to the superellipsoid (negative: inside).
+  S offerPoint(const Vector3<S>& w) {
     const PointDistanceResult<S> r =
         pointDistance(*pair_.shape, *pair_.X_WS, w, pair_.shape->queryOptions());
     offerDirection(r.normal);
+    return r.distance;
   }
 
   /// A point w of the other shape, from a start direction: a steepest descent of

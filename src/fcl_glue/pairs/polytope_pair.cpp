@@ -183,8 +183,9 @@ PairHit<S> overlap(const Pair<S>& pair, const Polytope<S>& p, const PairHit<S>& 
   Vector3<S> centroid = Vector3<S>::Zero();
   for (const Vector3<S>& w : p.vertices) centroid += w / S(p.vertices.size());
   for (const Vector3<S>& w : p.vertices) {
-    depth.offerPoint(w);
-    depth.offerDescent(w, Vector3<S>(centroid - w));  // from inside w's region
+    // A vertex inside: from inside its region too (F there is its h_A(v) − v·w, positive only
+    // for a vertex inside, and the depth is positive).
+    if (depth.offerPoint(w) < S(0)) depth.offerDescent(w, Vector3<S>(centroid - w));
   }
   for (const auto& [i, j] : p.edges) depth.offerEdge(p.vertices[i], p.vertices[j]);
   return depth.refinedBest();
