@@ -183,8 +183,10 @@ PairHit<S> overlap(const Pair<S>& pair, const Polytope<S>& p, const PairHit<S>& 
   Vector3<S> centroid = Vector3<S>::Zero();
   for (const Vector3<S>& w : p.vertices) centroid += w / S(p.vertices.size());
   for (const Vector3<S>& w : p.vertices) {
-    // A vertex inside: from inside its region too (F there is its h_A(v) − v·w, positive only
-    // for a vertex inside, and the depth is positive).
+    // A vertex inside the superellipsoid also descends from inside its own region (where F is
+    // its h_A(v) − v·w, which can have a second local minimum there: the case the tests found).
+    // Vertices outside are left to the other candidates, to keep the cost down (a choice, not
+    // a proof: docs/math.md).
     if (depth.offerPoint(w) < S(0)) depth.offerDescent(w, Vector3<S>(centroid - w));
   }
   for (const auto& [i, j] : p.edges) depth.offerEdge(p.vertices[i], p.vertices[j]);
