@@ -305,6 +305,29 @@ inline std::function<LD(const V3&)> supportFunction(const fcl::CollisionGeometry
   return [=](const V3& u) { return local(R.transpose() * u) + u.dot(t); };
 }
 
+/// Moves the unit direction v downhill on f by a pattern search on the sphere: `polls` directions
+/// around v at an angle step from 0.05 rad, halved down to `floor`; f_v is f(v), kept current.
+template <typename F>
+void patternSearch(const F& f, V3& v, LD& f_v, int polls, LD floor) {
+  for (LD step = 0.05; step > floor; step /= 2) {
+    bool moved = true;
+    for (int moves = 0; moved && moves < 64; ++moves) {
+      moved = false;
+      const V3 t1 = v.unitOrthogonal(), t2 = v.cross(t1);
+      for (int j = 0; j < polls && !moved; ++j) {
+        const LD angle = LD(2 * M_PI) * j / polls;
+        const V3 w = (v + step * (std::cos(angle) * t1 + std::sin(angle) * t2)).normalized();
+        const LD fw = f(w);
+        if (fw < f_v) {
+          f_v = fw;
+          v = w;
+          moved = true;
+        }
+      }
+    }
+  }
+}
+
 /// The penetration depth of two convex shapes, min over unit v of h_A(v) + h_B(−v) (negative:
 /// their distance), by a long-double search: a Fibonacci lattice of `lattice` directions, then a
 /// pattern search (16 directions, the step halved to 1e-13 rad) from the best 8.
@@ -326,23 +349,7 @@ inline LD referenceDepth(const std::function<LD(const V3&)>& h_a,
   for (int k = 0; k < starts; ++k) {
     V3 v = samples[k].second;
     LD f = samples[k].first;
-    for (LD step = 0.05; step > 1e-13; step /= 2) {
-      bool moved = true;
-      for (int moves = 0; moved && moves < 64; ++moves) {
-        moved = false;
-        const V3 t1 = v.unitOrthogonal(), t2 = v.cross(t1);
-        for (int j = 0; j < 16 && !moved; ++j) {
-          const LD angle = LD(2 * M_PI) * j / 16;
-          const V3 w = (v + step * (std::cos(angle) * t1 + std::sin(angle) * t2)).normalized();
-          const LD fw = F(w);
-          if (fw < f) {
-            f = fw;
-            v = w;
-            moved = true;
-          }
-        }
-      }
-    }
+    patternSearch(F, v, f, 16, LD(1e-13));
     best = std::min(best, f);
   }
   return best;

@@ -131,19 +131,7 @@ inline LD polytopeDepth(const std::function<LD(const V3&)>& h_a, const std::vect
     for (const auto& [f0, v0] : chosen) {
       V3 v = v0;
       LD fv = f0;
-      for (LD step = 0.05; step > 1e-15; step /= 2) {
-        bool moved = true;
-        for (int moves = 0; moved && moves < 64; ++moves) {
-          moved = false;
-          const V3 t1 = v.unitOrthogonal(), t2 = v.cross(t1);
-          for (int d = 0; d < 8 && !moved; ++d) {
-            const LD angle = LD(2 * M_PI) * d / 8;
-            const V3 w = (v + step * (std::cos(angle) * t1 + std::sin(angle) * t2)).normalized();
-            const LD fw = f(w);
-            if (fw < fv) fv = fw, v = w, moved = true;
-          }
-        }
-      }
+      patternSearch(f, v, fv, 8, LD(1e-15));
       best = std::min(best, F(v));
     }
   }
