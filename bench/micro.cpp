@@ -1,6 +1,7 @@
 // Google Benchmark micro-benchmarks: one query per iteration, cycling through 1,024 points
-// near the surface, for each method and shape class; and the batched Exact query over the same
-// 1,024 points per iteration, on SIMD lanes and on the scalar path. The full comparison is
+// near the surface, for each method and shape class; a new shape's first inside query; and the
+// batched Exact query over the same 1,024 points per iteration, on SIMD lanes and on the scalar
+// path. The full comparison is
 // fse_bench; this target is for profiling one method and for tracking regressions with Google
 // Benchmark's tooling (--benchmark_filter, --benchmark_format=json, compare.py).
 
@@ -10,6 +11,7 @@
 #include <map>
 
 #include "fcl_superellipsoid/batch_distance.h"
+#include "fcl_superellipsoid/point_distance.h"
 #include "methods.h"
 
 namespace fcl_superellipsoid {
@@ -59,6 +61,22 @@ void runBatch(benchmark::State& state, const std::string& shape_class, bool vect
   state.SetItemsProcessed(state.iterations() * 1024);
 }
 
+/// A new shape and one inside Exact query per iteration: the first inside query on a shape
+/// computes its rolling radius (Superellipsoid::minRadiusOfCurvature(), docs/math.md), a cost a
+/// scene pays once per shape it creates. Compare with the Exact rows above (one query, same
+/// shape).
+void runFirstInsideQuery(benchmark::State& state, const std::string& shape_class) {
+  const BenchShape& bench_shape = shapeClass(shape_class);
+  const PointSet points = makePointSet(bench_shape, Side::kInside, 1024, 1, 7);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const Superellipsoid<double> shape = bench_shape.make();
+    benchmark::DoNotOptimize(pointDistance(shape, points.points[i]));
+    i = (i + 1) & 1023;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
 void registerAll() {
   const std::vector<
       std::pair<std::string, std::function<std::unique_ptr<Method>(const BenchShape&)>>>
@@ -83,6 +101,11 @@ void registerAll() {
                                      runQueries(state, shape_class, make);
                                    });
     }
+  }
+  for (const char* shape_class : {"round", "sharp", "pinched", "cloth"}) {
+    benchmark::RegisterBenchmark(
+        (std::string("FirstInsideQuery/") + shape_class).c_str(),
+        [shape_class](benchmark::State& state) { runFirstInsideQuery(state, shape_class); });
   }
   for (const bool vectorize : {true, false}) {
     for (const char* shape_class : {"round", "sharp", "pinched", "cloth"}) {

@@ -16,11 +16,16 @@ namespace {
 
 constexpr double kHalfPi = 1.57079632679489661923;
 /// Samples per axis over the first octant's directions (polar angle from +z, azimuth from +x),
-/// at the midpoints of as many cells over [0, π/2]: 2.8° apart.
-constexpr int kGrid = 32;
-/// Samples refined by the pattern search, and the step at which it stops (radians).
-constexpr int kRefined = 6;
-constexpr double kFinestStep = 1e-7;
+/// at the midpoints of as many cells over [0, π/2]: 5.6° apart. The smallest radius varies
+/// smoothly with the normal where both exponents are ≤ 1, with one basin per feature (a tip, an
+/// edge, a corner), and a 16 × 16 grid puts a sample in each (measured against a 128 × 128 grid
+/// over 1,331 shapes, ε from 0.02 to 1 and aspect to 1000: same minima to 3e-6; even 6 × 6 does).
+constexpr int kGrid = 16;
+/// The grid's local minima refined by the pattern search, lowest first, and the step at which it
+/// stops (radians): at a minimum the radius is quadratic in the step, so the search ends within
+/// far less than the safety factor's 10 % (3e-6 relative over the same 1,331 shapes).
+constexpr int kRefined = 3;
+constexpr double kFinestStep = 1e-3;
 constexpr int kMovesPerStep = 8;
 /// The reported bound is this fraction of the smallest radius found. Where both exponents are
 /// ≤ 1 the radii vary smoothly over the sphere and the refined minimum is accurate to far better
@@ -76,11 +81,28 @@ double searchMinimum(const NestedNorm<double>& support, const Normal& normal) {
       samples.push_back({radius(theta, phi), {theta, phi}});
     }
   }
-  std::partial_sort(samples.begin(), samples.begin() + kRefined, samples.end(),
+  // The grid's local minima (no lower sample among the 8 neighbours): one start per basin, where
+  // the lowest samples would often be neighbours in a single basin. The grid's lowest sample is
+  // always among them (samples are never NaN: smallestRadiusAt reports 0 for a non-finite one).
+  std::vector<std::pair<double, std::array<double, 2>>> minima;
+  for (int i = 0; i < kGrid; ++i) {
+    for (int j = 0; j < kGrid; ++j) {
+      const double v = samples[i * kGrid + j].first;
+      bool lowest = true;
+      for (int a = std::max(i - 1, 0); a <= std::min(i + 1, kGrid - 1); ++a) {
+        for (int b = std::max(j - 1, 0); b <= std::min(j + 1, kGrid - 1); ++b) {
+          if (samples[a * kGrid + b].first < v) lowest = false;
+        }
+      }
+      if (lowest) minima.push_back(samples[i * kGrid + j]);
+    }
+  }
+  const int refined = std::min<int>(kRefined, static_cast<int>(minima.size()));
+  std::partial_sort(minima.begin(), minima.begin() + refined, minima.end(),
                     [](const auto& a, const auto& b) { return a.first < b.first; });
-  double best = samples.front().first;
-  for (int k = 0; k < kRefined; ++k) {
-    auto [value, at] = samples[k];
+  double best = minima.front().first;
+  for (int k = 0; k < refined; ++k) {
+    auto [value, at] = minima[k];
     for (double s = step; s > kFinestStep; s *= 0.5) {
       bool moved = true;
       for (int moves = 0; moved && moves < kMovesPerStep; ++moves) {
