@@ -285,17 +285,18 @@ TEST(ShapePairs, ShapesWithFlatFacesAndEdgesMatchTheConstruction) {
 // polytope's faces, edges and vertices (test_support/polytope_depth.h), which does not stall on
 // F's kinks as the pattern search does. What holds for every pair: ours is a real separating
 // translation, so never shallower than the enumeration, and the enumeration is never above the
-// pattern search (a check of the reference). The 1e-9 × size is met by most pairs, not
-// all (docs/pairs.md → "What is not there yet"): the count and the worst are printed.
+// pattern search (a check of the reference); and ours is the enumerated depth to 1e-9 × size
+// (the worst per partner is printed).
 TEST(ShapePairs, PolytopeOverlapsAgainstTheEnumeratedDepth) {
-  // A larger sample for a measurement: FSE_POLYTOPE_TRIALS=60 FSE_POLYTOPE_SEED=43.
+  // A larger sample: FSE_POLYTOPE_TRIALS=60 FSE_POLYTOPE_SEED=43 (each seed's 60 trials take
+  // about a minute).
   const char* trials_env = std::getenv("FSE_POLYTOPE_TRIALS");
   const char* seed_env = std::getenv("FSE_POLYTOPE_SEED");
   const int trials = trials_env != nullptr ? std::atoi(trials_env) : 20;
   std::mt19937 rng(seed_env != nullptr ? std::atoi(seed_env) : 41);
   std::uniform_real_distribution<double> gap(-0.3, -0.01), size(0.5, 5.0);
   std::map<std::string, double> worst;
-  int checked = 0, beyond = 0;
+  int checked = 0;
   for (int trial = 0; trial < trials; ++trial) {
     const LD scale = LD(size(rng));
     const Construction c = constructShape(rng, scale);
@@ -317,15 +318,77 @@ TEST(ShapePairs, PolytopeOverlapsAgainstTheEnumeratedDepth) {
       EXPECT_LE(r.distance, -double(enumerated) + 1e-12 * size_max) << name << " " << trial;
       const double e = std::abs(r.distance + double(enumerated)) / size_max;
       worst[name] = std::max(worst[name], e);
-      beyond += e > 1e-9;
+      EXPECT_LE(e, 1e-9) << name << " trial " << trial << ": " << r.distance << " vs "
+                         << -double(enumerated);
       ++checked;
     }
   }
   EXPECT_EQ(checked, 3 * trials);
-  std::cout << beyond << " of " << checked << " overlaps deeper than the enumeration by more than "
-            << "1e-9 × size\n";
   for (const auto& [name, e] : worst)
     std::cout << name << ": worst depth error " << e << " × size\n";
+}
+
+// The two overlaps on which the depth once stopped at a local minimum (1 in 90 of the larger
+// sample above, FSE_POLYTOPE_SEED=43: trials 30 and 37), replayed exactly: creased shapes where
+// F's minimum lies on an edge's circle of directions, inside the arc where that edge supports the
+// polytope, while the circle's own lowest point lies outside the arc, 35° away, with a maximum
+// between them. The family search bracketed only its lowest sample and ended 8.6e-5 and 4.4e-8 ×
+// size too deep; now every sign change of the derivative is bracketed.
+TEST(ShapePairs, EdgeCirclesWithSeveralLocalMinima) {
+  auto transform = [](std::array<double, 9> r, V3 t) {
+    fcl::Transform3d X = fcl::Transform3d::Identity();
+    X.linear() << r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7], r[8];
+    X.translation() = t.cast<double>();
+    return X;
+  };
+  struct Case {
+    std::shared_ptr<Superellipsoidd> shape;
+    fcl::Transform3d X_WA, X_WB;
+    std::shared_ptr<fcl::CollisionGeometryd> other;
+  };
+  const std::vector<Case> cases = {
+      {std::make_shared<Superellipsoidd>(0x1.9a48dd9b235d7p+1, 0x1.2c7a3c4e7c0cfp-1,
+                                         0x1.7e2c8de9c09cap+0, 0x1.64fcdcdbf38bep+0,
+                                         0x1.c7afa2a903808p+0),
+       transform({0x1.617cd7cdff717p-1, 0x1.13366b423bad8p-3, 0x1.6bf224843777fp-1,
+                  0x1.4844209606f9fp-1, -0x1.2336c1d1dffcbp-1, -0x1.07c7a5a17f48cp-1,
+                  0x1.571d35be64588p-2, 0x1.9f7503f1c0bcap-1, -0x1.ea5642fff5ef5p-2},
+                 V3(-0x1.e9ff81cc8677fp+0, -0x1.e34a057fab4aap-2, 0x1.ea711825505fcp+0)),
+       transform({0x1.633e12ab03bb8p-2, 0x1.4d57d1ba98f8bp-1, 0x1.59a794b812116p-1,
+                  0x1.d8f2dde8ece8ep-1, -0x1.ccf63c5c337fp-4, -0x1.76ee813e6a5fap-2,
+                  -0x1.4c9b766541efp-3, 0x1.805367e99409bp-1, -0x1.47e85e2bd2114p-1},
+                 V3(-0x1.2a168e283cc8bp+2, 0x1.0e03cfe9ae9d3p+2, 0x1.13f38a3c4594p-1)),
+       std::make_shared<fcl::Boxd>(0x1.b155e52a1a53dp+2, 0x1.9ad402683296dp+2,
+                                   0x1.4fb189c8489acp+1)},
+      {std::make_shared<Superellipsoidd>(0x1.f451f33a0a37fp+0, 0x1.1a15269268d85p+1,
+                                         0x1.410672324e105p+1, 0x1.719cde8d726b4p+0,
+                                         0x1.95cad1ef043e4p+0),
+       transform({-0x1.61540e1bc4c9ap-1, -0x1.17cea65d1d4e5p-1, 0x1.e5d7f5fc0cafdp-2,
+                  -0x1.b968dcb8daa48p-3, 0x1.8fe2973e9578cp-1, 0x1.2c18d80bd6511p-1,
+                  -0x1.61bb11410bdf6p-1, 0x1.3579c96d2e4cfp-2, -0x1.504412b18c935p-1},
+                 V3(-0x1.1f9be3ac57fb6p+2, -0x1.7e023c75b4f04p+1, 0x1.2c18b15fbb0c6p+2)),
+       transform({-0x1.e78730c8d57a6p-7, 0x1.fbe3deb878462p-1, 0x1.012c1e27dcb9dp-3,
+                  -0x1.f5aae31a6bb2dp-1, 0x1.5a6af7efd939fp-7, -0x1.98ca8ff89c685p-3,
+                  -0x1.983a875ed29b5p-3, -0x1.021083ab8e846p-3, 0x1.f18f5f9cc0e86p-1},
+                 V3(-0x1.0c8a836f755fdp+3, 0x1.139c811fd7576p+2, -0x1.ac54806b8972p-1)),
+       std::make_shared<fcl::Convexd>(
+           std::make_shared<const std::vector<fcl::Vector3d>>(std::vector<fcl::Vector3d>{
+               {0x1.39fa77c032055p+2, 0x1.1c4df30cd2aa6p+2, 0x1.6a1cdadf44ee3p+2},
+               {0x1.67f1332b183a5p+2, -0x1.1c04e11cd0b1cp+2, -0x1.56c90ad8df75bp+2},
+               {-0x1.252f4dafea492p+2, 0x1.10cd61d04a948p+2, -0x1.379fa962b2469p+2},
+               {-0x1.6e2a3e795923p+2, -0x1.06aead568f5ap+2, 0x1.5faf0cff5984cp+2}}),
+           4,
+           std::make_shared<const std::vector<int>>(
+               std::vector<int>{3, 0, 1, 2, 3, 0, 3, 1, 3, 0, 2, 3, 3, 1, 3, 2}))},
+  };
+  for (const Case& c : cases) {
+    const double size = 2 * c.shape->radii().maxCoeff();
+    const Answer r = ask<double>(c.shape, c.X_WA, c.other, c.X_WB, 1e-4 * size);
+    const LD enumerated =
+        polytopeDepth(supportFunction(*c.shape, c.X_WA), polytopeVertices(*c.other, c.X_WB));
+    ASSERT_GT(enumerated, 0);
+    EXPECT_NEAR(r.distance, -double(enumerated), 1e-9 * size) << *c.shape;
+  }
 }
 
 // Degenerate configurations stay finite and correct: touching, coincident centres, a flat face

@@ -82,27 +82,27 @@ class DepthCandidates {
     offerDirection(v);
   }
 
-  /// A one-parameter family of directions v(θ), θ ∈ [0, 2π), with value(θ) the function to
-  /// minimise over it and derivative(θ) its derivative: 12 samples, then the stationary point
-  /// bracketed around the best.
-  template <typename Direction, typename Value, typename Derivative>
-  void offerFamily(Direction direction, Value value, Derivative derivative) {
-    constexpr int kSamples = 12;
-    const S step = S(2 * M_PI / kSamples);
-    int best = 0;
-    S best_value = std::numeric_limits<S>::infinity();
-    for (int k = 0; k < kSamples; ++k) {
-      offerDirection(direction(k * step));
-      const S g = value(k * step);
-      if (g < best_value) {
-        best_value = g;
-        best = k;
-      }
-    }
+  /// A one-parameter family of directions v(θ), θ ∈ [0, 2π), with derivative(θ) the derivative
+  /// of the function to minimise over it: kFamilySamples samples, then the stationary point in
+  /// every interval where the derivative goes from negative to positive. Every local minimum,
+  /// not only the lowest sample's: on an edge's circle the function is F only where the edge
+  /// supports the other shape, and its local minimum there can be F's minimum while the circle's
+  /// lowest point lies outside (the tests found one 35° away, with a maximum between them).
+  template <typename Direction, typename Derivative>
+  void offerFamily(Direction direction, Derivative derivative) {
+    const S step = S(2 * M_PI / kFamilySamples);
     auto at = [&](S theta) { return Sample<S, S>{theta, derivative(theta), theta}; };
-    const auto lo = at((best - 1) * step), hi = at((best + 1) * step);
-    if (lo.derivative < S(0) && hi.derivative > S(0)) {
-      offerDirection(direction(stationaryPoint<S>(at, lo, hi).payload));
+    Sample<S, S> first = at(S(0)), previous = first;
+    offerDirection(direction(S(0)));
+    for (int k = 1; k <= kFamilySamples; ++k) {
+      const Sample<S, S> next = k < kFamilySamples
+                                    ? at(k * step)
+                                    : Sample<S, S>{S(2 * M_PI), first.derivative, S(2 * M_PI)};
+      if (k < kFamilySamples) offerDirection(direction(next.x));
+      if (previous.derivative < S(0) && next.derivative > S(0)) {
+        offerDirection(direction(stationaryPoint<S>(at, previous, next).payload));
+      }
+      previous = next;
     }
   }
 
@@ -113,15 +113,11 @@ class DepthCandidates {
     if (!(e.norm() > S(0))) return;
     const Vector3<S> c1 = e.unitOrthogonal(), c2 = e.normalized().cross(c1);
     auto direction = [&](S t) { return Vector3<S>(std::cos(t) * c1 + std::sin(t) * c2); };
-    auto value = [&](S t) {
-      const Vector3<S> v = direction(t);
-      return v.dot(shapeSupport(pair_, v) - w0);
-    };
     auto derivative = [&](S t) {
       const Vector3<S> v = direction(t), dv(-std::sin(t) * c1 + std::cos(t) * c2);
       return dv.dot(shapeSupport(pair_, v) - w0);
     };
-    offerFamily(direction, value, derivative);
+    offerFamily(direction, derivative);
   }
 
   /// F's minimum near the best direction so far: a pattern search on the sphere (16 directions,
@@ -149,6 +145,7 @@ class DepthCandidates {
  private:
   static constexpr S kNone = std::numeric_limits<S>::infinity();
   static constexpr int kDescentSteps = 60;
+  static constexpr int kFamilySamples = 12;
   const Pair<S>& pair_;
   OtherSupport other_support_;
   S f_ = S(0);

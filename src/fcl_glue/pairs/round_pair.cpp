@@ -159,15 +159,11 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
   depth.offerDirection(Vector3<S>(b.z));  // the base (cone, cylinder): v = −n = z
   if (!b.cone) depth.offerDirection(Vector3<S>(-b.z));
   auto direction = [&](S theta) { return Vector3<S>(-b.sideNormal(theta)); };
-  auto value = [&](S theta) {
-    const Vector3<S> m = b.sideNormal(theta);
-    return (-m).dot(shapeSupport(pair, Vector3<S>(-m))) + b.support(m);
-  };
   auto derivative = [&](S theta) {
     const Vector3<S> m = b.sideNormal(theta);
     return b.sideNormalDerivative(theta).dot(b.sideAnchor() - shapeSupport(pair, Vector3<S>(-m)));
   };
-  depth.offerFamily(direction, value, derivative);
+  depth.offerFamily(direction, derivative);
   constexpr int kRimPoints = 12;
   for (S side : {S(1), S(-1)}) {
     if (b.cone && side > S(0)) continue;
