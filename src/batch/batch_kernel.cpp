@@ -342,18 +342,24 @@ class LaneSolver {
             hn::IfThenElse(hn::Ge(to.z, zero), to.z, hn::Mul(tenth, from.z))};
   }
 
-  /// The Newton step δ of the bordered system [A, n; nᵀ, 0]·[δ; λ] = [r; 0] (n a unit normal),
-  /// solved in the tangent plane of n, with ExactSolver::convexified's shift of A applied to
-  /// the tangent block: where its smallest eigenvalue is below kConvexifyBelow·scale (and
-  /// finite), shift it to kConvexifyTo·scale (exact_rules.h).
-  Vec3<D> tangentStep(const Sym3<D>& a, const Vec3<D>& n, const Vec3<D>& r, V scale) const {
+  /// The Newton steps of the bordered system [A, n; nᵀ, 0]·[δ; λ] = [r; 0] (n a unit normal),
+  /// solved in the tangent plane of n, with ExactSolver::convexified's rule: where the tangent
+  /// block's smallest eigenvalue is below kConvexifyBelow·scale (and finite), `shifted` is the
+  /// step with that eigenvalue shifted to kConvexifyTo·scale, else the plain Newton step; on the
+  /// lanes of `full_first` (a shift of a positive eigenvalue) the unshifted step `full` is
+  /// tried first (exact_rules.h).
+  struct TangentSteps {
+    Vec3<D> shifted, full;
+    M full_first;
+  };
+  TangentSteps tangentSteps(const Sym3<D>& a, const Vec3<D>& n, const Vec3<D>& r, V scale) const {
     const V zero = hn::Zero(d_), one = hn::Set(d_, 1);
     // t1 = n × helper, helper = x̂ where |n_x| < 0.6, else ŷ; t2 = n × t1.
     const auto use_x = hn::Lt(hn::Abs(n.x), hn::Set(d_, T(rules::kTangentHelperSwitch)));
     Vec3<D> t1 = Select(use_x, Vec3<D>{zero, n.z, hn::Neg(n.y)}, Vec3<D>{hn::Neg(n.z), zero, n.x});
     t1 = Times(hn::Div(one, hn::Sqrt(Dot(t1, t1))), t1);
     const Vec3<D> t2 = Cross(n, t1);
-    V b11 = Dot(t1, a.times(t1)), b22 = Dot(t2, a.times(t2));
+    const V b11 = Dot(t1, a.times(t1)), b22 = Dot(t2, a.times(t2));
     const V b12 = Dot(t1, a.times(t2));
     const V mean = hn::Mul(hn::Set(d_, T(0.5)), hn::Add(b11, b22));
     const V half_gap = Hypot(hn::Mul(hn::Set(d_, T(0.5)), hn::Sub(b11, b22)), b12);
@@ -363,13 +369,28 @@ class LaneSolver {
                 hn::IsFinite(lowest));
     const V shift = hn::IfThenElseZero(
         shift_it, hn::Sub(hn::Mul(hn::Set(d_, T(rules::kConvexifyTo)), scale), lowest));
-    b11 = hn::Add(b11, shift);
-    b22 = hn::Add(b22, shift);
     const V c1 = Dot(t1, r), c2 = Dot(t2, r);
-    const V inv_det = hn::Div(one, hn::NegMulAdd(b12, b12, hn::Mul(b11, b22)));
-    const V alpha = hn::Mul(hn::NegMulAdd(b12, c2, hn::Mul(b22, c1)), inv_det);
-    const V beta = hn::Mul(hn::NegMulAdd(b12, c1, hn::Mul(b11, c2)), inv_det);
-    return PlusTimes(Times(alpha, t1), beta, t2);
+    // The 2×2 solve of the tangent block with `s` added to its diagonal.
+    auto solve = [&](V s) {
+      const V s11 = hn::Add(b11, s), s22 = hn::Add(b22, s);
+      const V inv_det = hn::Div(one, hn::NegMulAdd(b12, b12, hn::Mul(s11, s22)));
+      const V alpha = hn::Mul(hn::NegMulAdd(b12, c2, hn::Mul(s22, c1)), inv_det);
+      const V beta = hn::Mul(hn::NegMulAdd(b12, c1, hn::Mul(s11, c2)), inv_det);
+      return PlusTimes(Times(alpha, t1), beta, t2);
+    };
+    const M full_first = hn::And(shift_it, hn::Gt(lowest, zero));
+    return {solve(shift), hn::AllFalse(d_, full_first) ? Vec3<D>{zero, zero, zero} : solve(zero),
+            full_first};
+  }
+
+  /// The step halving of both formulations, with the unshifted step first where tangentSteps
+  /// says so (ExactSolver::newtonPrimal / newtonDual): returns the lanes that improved.
+  template <typename Attempt>
+  M stepFrom(M active, const TangentSteps& steps, const Attempt& attempt) const {
+    M improved = hn::MaskFromVec(hn::Zero(d_));
+    const M full_lanes = hn::And(active, steps.full_first);
+    if (!hn::AllFalse(d_, full_lanes)) improved = halveUntilBetter(full_lanes, steps.full, attempt);
+    return hn::Or(improved, halveUntilBetter(hn::AndNot(improved, active), steps.shifted, attempt));
   }
 
   /// √(a² + b²) without overflow (the tangent block can be huge near a crease).
@@ -412,9 +433,9 @@ class LaneSolver {
       Sym3<D> a = {hn::MulAdd(mu, c.hessian.xx, one), hn::Mul(mu, c.hessian.xy),
                    hn::Mul(mu, c.hessian.xz),         hn::MulAdd(mu, c.hessian.yy, one),
                    hn::Mul(mu, c.hessian.yz),         hn::MulAdd(mu, c.hessian.zz, one)};
-      const Vec3<D> step = tangentStep(a, c.normal, residual, one);
+      const TangentSteps steps = tangentSteps(a, c.normal, residual, one);
       // The trial point is re-projected radially onto the surface (candidateOnRay).
-      const M improved = halveUntilBetter(active, step, [&](const Vec3<D>& s, M trying) {
+      const M improved = stepFrom(active, steps, [&](const Vec3<D>& s, M trying) {
         const Vec3<D> p = stayInOctant(c.point, Plus(c.point, s));
         const M valid = hn::And(AllFinite(p), hn::Gt(Dot(p, p), hn::Zero(d_)));
         const Candidate<D> trial = candidateOnRay(p);
@@ -441,9 +462,9 @@ class LaneSolver {
       const Sym3<D> a = {
           hn::Add(e.hessian.xx, distance), e.hessian.xy, e.hessian.xz,
           hn::Add(e.hessian.yy, distance), e.hessian.yz, hn::Add(e.hessian.zz, distance)};
-      const Vec3<D> step = tangentStep(a, n, residual, hn::Abs(distance));
+      const TangentSteps steps = tangentSteps(a, n, residual, hn::Abs(distance));
       // The trial normal is re-normalised; its surface point is ∇h of it.
-      const M improved = halveUntilBetter(active, step, [&](const Vec3<D>& s, M trying) {
+      const M improved = stepFrom(active, steps, [&](const Vec3<D>& s, M trying) {
         Vec3<D> trial_n = stayInOctant(n, Plus(n, s));
         trial_n = Times(hn::Div(one, hn::Sqrt(Dot(trial_n, trial_n))), trial_n);
         const NormEval<D> trial = Evaluate(d_, dual_, trial_n);

@@ -42,7 +42,9 @@ constexpr double kOctantShrink = 0.1;
 
 /// Convexification of the Newton matrix in the tangent plane: where its smallest tangent
 /// eigenvalue is below kConvexifyBelow × scale (inside, beyond a focal point), it is shifted
-/// up to kConvexifyTo × scale.
+/// up to kConvexifyTo × scale. Where that eigenvalue is still positive (just before a focal
+/// point: Q near the centre of a near-sphere), the unshifted step is tried first, and the
+/// shifted one only if no halving of it reduces the error.
 constexpr double kConvexifyBelow = 1e-4;
 constexpr double kConvexifyTo = 0.1;
 

@@ -261,11 +261,13 @@ class ExactSolver {
   /// iterate sits near a saddle such as the tip of a creased shape (ε > 1). There (smallest
   /// tangent eigenvalue below 1e-4 × `scale`) the matrix is shifted by a multiple of I until
   /// that eigenvalue is 10 % of `scale`: a damped step uphill on the Lagrangian's curvature, not
-  /// toward the saddle. Small positive eigenvalues are left alone: near a focal ring (Q close
-  /// to the axis of a round cross-section) the full Newton step is the one that converges; a
-  /// shift there made the iterate creep along the ring for hundreds of iterations.
+  /// toward the saddle. Near a focal ring (Q close to the axis of a round cross-section) or a
+  /// focal point (Q near the centre of a near-sphere) the smallest eigenvalue is small but
+  /// positive and the full Newton step is the one that converges (the shifted one creeps, by
+  /// about eigenvalue/(10 % of scale) per iteration), so a positive one comes back in
+  /// `full_step_first`: the caller tries the unshifted matrix first.
   static Eigen::Matrix<S, 3, 3> convexified(const Eigen::Matrix<S, 3, 3>& a, const Vector3<S>& n,
-                                            S scale) {
+                                            S scale, bool* full_step_first) {
     // An orthonormal tangent basis t1, t2 of n, and the 2×2 tangent block.
     const Vector3<S> helper =
         std::abs(n[0]) < S(rules::kTangentHelperSwitch) ? Vector3<S>::UnitX() : Vector3<S>::UnitY();
@@ -275,7 +277,9 @@ class ExactSolver {
     const S mean = (b11 + b22) / 2, half_gap = std::hypot((b11 - b22) / 2, b12);
     const S lowest = mean - half_gap;
     const S wanted = S(rules::kConvexifyTo) * scale;
+    *full_step_first = false;
     if (lowest >= S(rules::kConvexifyBelow) * scale || !std::isfinite(lowest)) return a;
+    *full_step_first = lowest > S(0);
     return a + (wanted - lowest) * Eigen::Matrix<S, 3, 3>::Identity();
   }
 
@@ -302,9 +306,14 @@ class ExactSolver {
       const S mu = c.gradient.dot(y_ - c.point) / c.gradient.squaredNorm();
       // Residual of Q − N = μ∇G; G(N) = 1 holds (N is re-projected every step).
       const Vector3<S> residual = y_ - c.point - mu * c.gradient;
+      const Eigen::Matrix<S, 3, 3> raw = Eigen::Matrix<S, 3, 3>::Identity() + mu * c.hessian;
+      bool full_step_first = false;
+      const Eigen::Matrix<S, 3, 3> a = convexified(raw, c.normal, S(1), &full_step_first);
       Vector3<S> step;
-      const Eigen::Matrix<S, 3, 3> a =
-          convexified(Eigen::Matrix<S, 3, 3>::Identity() + mu * c.hessian, c.normal, S(1));
+      if (full_step_first && solveBordered(raw, c.gradient, residual, S(0), &step) &&
+          tryStep(&c, step)) {
+        continue;
+      }
       if (!solveBordered(a, c.gradient, residual, S(0), &step)) break;
       if (!tryStep(&c, step)) break;
     }
@@ -322,26 +331,34 @@ class ExactSolver {
       const Vector3<S> point = e.gradient;
       const S d = n.dot(y_ - point);
       const Vector3<S> residual = y_ - point - d * n;
-      const Eigen::Matrix<S, 3, 3> a =
-          convexified(e.hessian + d * Eigen::Matrix<S, 3, 3>::Identity(), n, std::abs(d));
-      Vector3<S> step;
-      if (!solveBordered(a, n, residual, S(0), &step)) break;
-      bool improved = false;
-      for (int trial_step = 0; trial_step < rules::kStepTrials && !improved; ++trial_step) {
-        const Vector3<S> trial_n = stayInOctant(n, Vector3<S>(n + step)).normalized();
-        const NestedNormEval<S> trial = dual_.evaluate(trial_n, true);
-        const S error = errorAt(trial.gradient, trial_n);
-        if (error < c.error) {
-          c.point = trial.gradient;
-          c.normal = trial_n;
-          c.error = error;
-          n = trial_n;
-          e = trial;
-          improved = moved = true;
+      const Eigen::Matrix<S, 3, 3> raw = e.hessian + d * Eigen::Matrix<S, 3, 3>::Identity();
+      bool full_step_first = false;
+      const Eigen::Matrix<S, 3, 3> a = convexified(raw, n, std::abs(d), &full_step_first);
+      // A step with halving; true if a trial reduced the error.
+      auto try_dual_step = [&](Vector3<S> step) {
+        for (int trial_step = 0; trial_step < rules::kStepTrials; ++trial_step) {
+          const Vector3<S> trial_n = stayInOctant(n, Vector3<S>(n + step)).normalized();
+          const NestedNormEval<S> trial = dual_.evaluate(trial_n, true);
+          const S error = errorAt(trial.gradient, trial_n);
+          if (error < c.error) {
+            c.point = trial.gradient;
+            c.normal = trial_n;
+            c.error = error;
+            n = trial_n;
+            e = trial;
+            moved = true;
+            return true;
+          }
+          step *= S(0.5);
         }
-        step *= S(0.5);
+        return false;
+      };
+      Vector3<S> step;
+      if (full_step_first && solveBordered(raw, n, residual, S(0), &step) && try_dual_step(step)) {
+        continue;
       }
-      if (!improved) break;
+      if (!solveBordered(a, n, residual, S(0), &step)) break;
+      if (!try_dual_step(step)) break;
     }
     // Back to the primal's view of the final point (its own normal, gradient and Hessian), so
     // the error reported and any primal iterations that follow are the primal's.

@@ -287,6 +287,45 @@ TYPED_TEST(PointDistanceTest, SphereCentreIsNonUniqueButExact) {
   EXPECT_NEAR(double(r.distance), double(truth.distance), test::exactTarget<S>(1.9, 1.9));
 }
 
+// Near-spheres queried near their centre (docs/hardening.md, finding 9). The centre is the
+// focal point of every normal: the tangent Newton matrix's smallest eigenvalue is about
+// |Q| / radius, and every direction is almost a nearest one. Each query converges, and its
+// distance is the reference's (for the sphere itself, by construction: |Q| − radius).
+TYPED_TEST(PointDistanceTest, NearSpheresConvergeNearTheirCentre) {
+  using S = TypeParam;
+  const auto options = DistanceOptions<S>::of(DistanceMethod::kExact);
+  const std::array<double, 3> directions[] = {
+      {-0.71, -4e-4, -0.71}, {0.3, 0.5, -0.81}, {1e-3, 0.6, 0.8}, {0.577, 0.577, 0.578}};
+  std::vector<double> radii = {1, 1e3};
+  if (std::is_same<S, double>::value) radii.push_back(9.3e-10);  // the fuzzer's shape
+  for (double e : {1 - 4.2e-10, 1 - 1e-6, 1 + 1e-6, 1 - 1e-3, 1.0, 1 + 1e-3}) {
+    for (double radius : radii) {
+      const Superellipsoid<S> shape = makeShape<S>({radius, radius, radius}, e, e);
+      SCOPED_TRACE(test::describe(shape));
+      const double target = test::exactTarget<S>(double(shape.eps1()), double(shape.eps2()));
+      const test::ReferenceDistance reference({radius, radius, radius}, shape.eps1(), shape.eps2());
+      for (const auto& dir : directions) {
+        for (double depth : {1e-2, 1e-4, 1e-6, 1e-8, 1e-10}) {
+          const double scale =
+              depth * radius / std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+          const Vector3<S> x(S(scale * dir[0]), S(scale * dir[1]), S(scale * dir[2]));
+          SCOPED_TRACE("|Q| = " + std::to_string(depth) + " × radius, direction " +
+                       std::to_string(dir[0]) + ", " + std::to_string(dir[1]) + ", " +
+                       std::to_string(dir[2]));
+          const auto r = pointDistance(shape, x, options);
+          expectInvariants(shape, x, r, options.max_iterations, target);
+          EXPECT_TRUE(r.converged) << "error " << r.error << ", " << r.iterations << " iterations";
+          const auto truth = reference.query({x[0], x[1], x[2]});
+          EXPECT_NEAR(double(r.distance), double(truth.distance), target * radius);
+          if (shape.eps1() == S(1) && shape.eps2() == S(1)) {
+            EXPECT_NEAR(double(r.distance), double(x.norm()) - radius, target * radius);
+          }
+        }
+      }
+    }
+  }
+}
+
 TYPED_TEST(PointDistanceTest, WorldFrameOverloadPosesTheAnswer) {
   using S = TypeParam;
   const Superellipsoid<S> shape{S(1), S(2), S(0.5), S(0.6), S(1.2)};
