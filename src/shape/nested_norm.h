@@ -37,14 +37,17 @@ inline S pnorm2(S a, S b, S p, S inv_p) {
 }
 
 /// ‖(a, b)‖_p with the gradient's powers (a/N)^(p−1), (b/N)^(p−1), for a, b ≥ 0 and p > 1.
-/// The powers come from the norm's own q = (lo/m)^p without another pow():
-///   (m/N)^p = 1/(1 + q)   ⇒  (m/N)^(p−1) = N/(m·(1 + q)),
+/// The powers come from the norm's own q = (lo/m)^p without another pow(): with
+/// w = (1 + q)^(1/p), so that N = m·w,
+///   (m/N)^p = 1/(1 + q)   ⇒  (m/N)^(p−1) = w/(1 + q),
 ///   (lo/N)^(p−1) = (lo/m)^(p−1)·(m/N)^(p−1),  with (lo/m)^(p−1) = q/(lo/m).
-/// Only ratios in [0, 1] are formed: the product q·N once underflowed for a tiny shape (radii
-/// 4e-25) and a direction with a tiny component, losing every digit of the power (fuzzing
-/// found it; docs/hardening.md → "Findings"). Where q is subnormal or underflows (lo/m tiny, p
-/// large) it carries too few digits, and pow() gives (lo/N)^(p−1) instead. (The SIMD kernel,
-/// batch/batch_kernel.cpp, forms the powers the same way.)
+/// Only ratios in [0, 1] and w are formed, never N itself: the product q·N once underflowed
+/// for a tiny shape (radii 4e-25) and a direction with a tiny component, losing every digit of
+/// the power, and N/(m·(1 + q)) once lost all but a few digits where m, and so N, were
+/// subnormal (fuzzing found both; docs/hardening.md → "Findings", 4 and 10). Where q is
+/// subnormal or underflows (lo/m tiny, p large) it carries too few digits, and pow() gives
+/// (lo/m)^(p−1) instead. (The SIMD kernel, batch/batch_kernel.cpp, forms the powers the same
+/// way.)
 template <typename S>
 struct PNorm2 {
   S norm, pow_a, pow_b;  // N, (a/N)^(p−1), (b/N)^(p−1)
@@ -55,13 +58,15 @@ inline PNorm2<S> pnorm2WithPowers(S a, S b, S p, S inv_p) {
   const S m = std::max(a, b);
   if (m == S(0)) return {S(0), S(0), S(0)};
   const S lo = std::min(a, b);
-  const S q = std::pow(lo / m, p);
-  const S n = m * std::pow(S(1) + q, inv_p);
-  const S pow_m = n / (m * (S(1) + q));
+  const S ratio = lo / m;  // in [0, 1]
+  const S q = std::pow(ratio, p);
+  const S w = std::pow(S(1) + q, inv_p);
+  const S n = m * w;
+  const S pow_m = w / (S(1) + q);
   S pow_lo = S(0);
   if (lo > S(0)) {
     // q ≥ min implies lo/m ≥ q (p > 1), so the quotient is a normal number in [0, 1].
-    pow_lo = q >= std::numeric_limits<S>::min() ? q / (lo / m) * pow_m : std::pow(lo / n, p - S(1));
+    pow_lo = (q >= std::numeric_limits<S>::min() ? q / ratio : std::pow(ratio, p - S(1))) * pow_m;
   }
   return a >= b ? PNorm2<S>{n, pow_m, pow_lo} : PNorm2<S>{n, pow_lo, pow_m};
 }

@@ -11,6 +11,7 @@
 #include <thread>
 #include <vector>
 
+#include "fcl_superellipsoid/point_distance.h"
 #include "fcl_superellipsoid/superellipsoid.h"
 #include "test_helpers.h"
 
@@ -288,6 +289,44 @@ TYPED_TEST(SuperellipsoidTest, SupportPointAtTheEndsOfTheRange) {
         EXPECT_NEAR(double(u.dot(n / scale)), h_unit, 4 * test::evalTolerance<S>() * h_unit);
       }
     }
+  }
+}
+
+// A direction whose small components are subnormal, on a small shape (docs/hardening.md →
+// "Findings", 10: the fuzzer's far Radial query, where the direction's x and y components were
+// 1.7e-314 and −5.7e-316 and the radius 9.5e-7): the first level's norm is subnormal, and a
+// power formed from it kept only a few digits; the support point was 6.5e-5 off the surface.
+TYPED_TEST(SuperellipsoidTest, SupportPointAlongASubnormalDirection) {
+  using S = TypeParam;
+  const S denorm = std::numeric_limits<S>::denorm_min();
+  const S radius = std::is_same<S, double>::value ? S(9.53697182115238e-07) : S(1e-5);
+  std::vector<std::array<S, 2>> exponents = {{S(0.7), S(0.02)}, {S(1.5), S(1)}, {S(0.3), S(1.9)}};
+  // The fuzzer's exponents, double only: with ε2 = 4e-17 the reference gauge raises |z|/a to
+  // the power 5e16, which overflows for a float point one ulp outside.
+  if (std::is_same<S, double>::value)
+    exponents.push_back({S(0.69803926255553939), S(4.3584927333917278e-17)});
+  for (const std::array<S, 2>& eps : exponents) {
+    for (S scale : {radius, S(1), NumericRange<S>::kMinRadius}) {
+      const Superellipsoid<S> shape(scale, scale, scale, eps[0], eps[1]);
+      SCOPED_TRACE(test::describe(shape));
+      for (const Vector3<S>& u : {Vector3<S>(S(1e5) * denorm, S(-3e3) * denorm, S(1)),
+                                  Vector3<S>(S(40) * denorm, S(7) * denorm, S(-1)),
+                                  Vector3<S>(S(1e3) * denorm, S(1), S(1e3) * denorm)}) {
+        const Vector3<S> n = shape.supportPoint(u);
+        ASSERT_TRUE(n.allFinite());
+        EXPECT_NEAR(double(test::referenceGauge(shape, n)), 1.0, 4 * test::evalTolerance<S>());
+      }
+    }
+  }
+  // The fuzzer's query itself: a far point nearly on the +z axis, Radial method.
+  if (std::is_same<S, double>::value) {
+    const Superellipsoid<S> shape(radius, radius, radius, S(0.69803926255553939),
+                                  S(4.3584927333917278e-17));
+    const Vector3<S> x(S(2.9275062608084037e-12), S(-9.7690493643014336e-14),
+                       S(1.7144548770260988e+302));
+    const auto r = pointDistance(shape, x, DistanceOptions<S>::of(DistanceMethod::kRadial));
+    EXPECT_NEAR(double(test::referenceGauge(shape, r.nearest_point)), 1.0,
+                4 * test::evalTolerance<S>());
   }
 }
 
