@@ -343,17 +343,17 @@ class LaneSolver {
   }
 
   /// The Newton steps of the bordered system [A, n; nᵀ, 0]·[δ; λ] = [r; 0] (n a unit normal),
-  /// solved in the tangent plane of n, with ExactSolver::convexified's rule: where the tangent
-  /// block's smallest eigenvalue is below kConvexifyBelow·scale (and finite), `shifted` is the
-  /// step with that eigenvalue shifted to kConvexifyTo·scale, else the plain Newton step; on the
-  /// lanes of `full_first` (a shift of a positive eigenvalue) the unshifted step `full` is
-  /// tried first (exact_rules.h).
+  /// solved in the tangent plane of n, with exact_rules::convexifiedTangentBlock's rule (the same
+  /// formulas, lane by lane): where a tangent eigenvalue is below kConvexifyBelow·scale (and
+  /// finite), `shifted` is the step with that eigenvalue replaced by kConvexifyTo·scale along its
+  /// eigenvector, else the plain Newton step; on the lanes of `full_first` (the smallest
+  /// eigenvalue replaced was positive) the unmodified step `full` is tried first.
   struct TangentSteps {
     Vec3<D> shifted, full;
     M full_first;
   };
   TangentSteps tangentSteps(const Sym3<D>& a, const Vec3<D>& n, const Vec3<D>& r, V scale) const {
-    const V zero = hn::Zero(d_), one = hn::Set(d_, 1);
+    const V zero = hn::Zero(d_), one = hn::Set(d_, 1), half = hn::Set(d_, T(0.5));
     // t1 = n × helper, helper = x̂ where |n_x| < 0.6, else ŷ; t2 = n × t1.
     const auto use_x = hn::Lt(hn::Abs(n.x), hn::Set(d_, T(rules::kTangentHelperSwitch)));
     Vec3<D> t1 = Select(use_x, Vec3<D>{zero, n.z, hn::Neg(n.y)}, Vec3<D>{hn::Neg(n.z), zero, n.x});
@@ -361,25 +361,46 @@ class LaneSolver {
     const Vec3<D> t2 = Cross(n, t1);
     const V b11 = Dot(t1, a.times(t1)), b22 = Dot(t2, a.times(t2));
     const V b12 = Dot(t1, a.times(t2));
-    const V mean = hn::Mul(hn::Set(d_, T(0.5)), hn::Add(b11, b22));
-    const V half_gap = Hypot(hn::Mul(hn::Set(d_, T(0.5)), hn::Sub(b11, b22)), b12);
-    const V lowest = hn::Sub(mean, half_gap);
-    const auto shift_it =
-        hn::And(hn::Lt(lowest, hn::Mul(hn::Set(d_, T(rules::kConvexifyBelow)), scale)),
-                hn::IsFinite(lowest));
-    const V shift = hn::IfThenElseZero(
-        shift_it, hn::Sub(hn::Mul(hn::Set(d_, T(rules::kConvexifyTo)), scale), lowest));
+    const V mean = hn::Mul(half, hn::Add(b11, b22)), half_diff = hn::Mul(half, hn::Sub(b11, b22));
+    const V half_gap = Hypot(half_diff, b12);
+    // The eigenvalue of larger magnitude without cancellation, the other as det/that one.
+    const V det = hn::MulAdd(b11, b22, hn::Neg(hn::Mul(b12, b12)));
+    const M mean_positive = hn::Ge(mean, zero);
+    const V big = hn::IfThenElse(mean_positive, hn::Add(mean, half_gap), hn::Sub(mean, half_gap));
+    const M big_nonzero = hn::Ne(big, zero);
+    const V small =
+        hn::IfThenElseZero(big_nonzero, hn::Div(det, hn::IfThenElse(big_nonzero, big, one)));
+    const V lowest = hn::IfThenElse(mean_positive, small, big);
+    const V highest = hn::IfThenElse(mean_positive, big, small);
+    const V below = hn::Mul(hn::Set(d_, T(rules::kConvexifyBelow)), scale);
+    const V wanted = hn::Mul(hn::Set(d_, T(rules::kConvexifyTo)), scale);
+    const M shift_it = hn::And(hn::Lt(lowest, below), hn::IsFinite(lowest));
+    // The lowest eigenvalue's unit eigenvector (c, s), without cancellation.
+    const M diff_negative = hn::Lt(half_diff, zero);
+    V c = hn::IfThenElse(diff_negative, hn::Sub(half_diff, half_gap), b12);
+    V s = hn::IfThenElse(diff_negative, b12, hn::Neg(hn::Add(half_diff, half_gap)));
+    const V length = Hypot(c, s);
+    const M has_length = hn::Gt(length, zero);
+    const V inv_length = hn::Div(one, hn::IfThenElse(has_length, length, one));
+    c = hn::IfThenElse(has_length, hn::Mul(c, inv_length), one);
+    s = hn::IfThenElseZero(has_length, hn::Mul(s, inv_length));
+    const V high = hn::IfThenElse(hn::Lt(highest, below), wanted, highest);
+    // M = wanted·(c, s)(c, s)ᵀ + high·(−s, c)(−s, c)ᵀ on the shifted lanes, B elsewhere.
+    const V cc = hn::Mul(c, c), ss = hn::Mul(s, s);
+    const V m11 = hn::IfThenElse(shift_it, hn::MulAdd(wanted, cc, hn::Mul(high, ss)), b11);
+    const V m22 = hn::IfThenElse(shift_it, hn::MulAdd(wanted, ss, hn::Mul(high, cc)), b22);
+    const V m12 = hn::IfThenElse(shift_it, hn::Mul(hn::Sub(wanted, high), hn::Mul(c, s)), b12);
     const V c1 = Dot(t1, r), c2 = Dot(t2, r);
-    // The 2×2 solve of the tangent block with `s` added to its diagonal.
-    auto solve = [&](V s) {
-      const V s11 = hn::Add(b11, s), s22 = hn::Add(b22, s);
-      const V inv_det = hn::Div(one, hn::NegMulAdd(b12, b12, hn::Mul(s11, s22)));
-      const V alpha = hn::Mul(hn::NegMulAdd(b12, c2, hn::Mul(s22, c1)), inv_det);
-      const V beta = hn::Mul(hn::NegMulAdd(b12, c1, hn::Mul(s11, c2)), inv_det);
+    // The 2×2 solve of a tangent block.
+    auto solve = [&](V s11, V s12, V s22) {
+      const V inv_det = hn::Div(one, hn::NegMulAdd(s12, s12, hn::Mul(s11, s22)));
+      const V alpha = hn::Mul(hn::NegMulAdd(s12, c2, hn::Mul(s22, c1)), inv_det);
+      const V beta = hn::Mul(hn::NegMulAdd(s12, c1, hn::Mul(s11, c2)), inv_det);
       return PlusTimes(Times(alpha, t1), beta, t2);
     };
     const M full_first = hn::And(shift_it, hn::Gt(lowest, zero));
-    return {solve(shift), hn::AllFalse(d_, full_first) ? Vec3<D>{zero, zero, zero} : solve(zero),
+    return {solve(m11, m12, m22),
+            hn::AllFalse(d_, full_first) ? Vec3<D>{zero, zero, zero} : solve(b11, b12, b22),
             full_first};
   }
 

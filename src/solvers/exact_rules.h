@@ -40,13 +40,63 @@ constexpr int kStepTrials = 5;
 /// fraction of its previous value instead.
 constexpr double kOctantShrink = 0.1;
 
-/// Convexification of the Newton matrix in the tangent plane: where its smallest tangent
-/// eigenvalue is below kConvexifyBelow × scale (inside, beyond a focal point), it is shifted
-/// up to kConvexifyTo × scale. Where that eigenvalue is still positive (just before a focal
-/// point: Q near the centre of a near-sphere), the unshifted step is tried first, and the
-/// shifted one only if no halving of it reduces the error.
+/// Convexification of the Newton matrix in the tangent plane: each tangent eigenvalue below
+/// kConvexifyBelow × scale (inside, beyond a focal point) is replaced by kConvexifyTo × scale,
+/// along its own eigenvector; the other eigenvalue keeps its value. Where the smallest one is
+/// still positive (just before a focal point: Q near the centre of a near-sphere), the
+/// unmodified step is tried first, and the convexified one only if no halving of it reduces the
+/// error.
 constexpr double kConvexifyBelow = 1e-4;
 constexpr double kConvexifyTo = 0.1;
+
+/// The tangent block [m11, m12; m12, m22] after convexification, in the tangent basis it was
+/// given in.
+template <typename S>
+struct TangentBlock {
+  S m11, m12, m22;
+  bool modified;         // an eigenvalue was replaced
+  bool full_step_first;  // ... and the smallest was positive: try the unmodified step first
+};
+
+/// Convexifies the symmetric tangent block [b11, b12; b12, b22] (the rule above). The block is
+/// rebuilt from its eigenvectors, not shifted, so a replaced eigenvalue is exact even where the
+/// other is huge (near a crease). The scalar solver calls this; the SIMD kernel
+/// (batch_kernel.cpp, tangentSteps) computes the same formulas lane by lane.
+template <typename S>
+TangentBlock<S> convexifiedTangentBlock(S b11, S b12, S b22, S scale) {
+  const S mean = (b11 + b22) / 2, half_diff = (b11 - b22) / 2;
+  const S half_gap = std::hypot(half_diff, b12);
+  // The eigenvalue of larger magnitude is mean ± half_gap without cancellation; the other is
+  // det/that one (mean ∓ half_gap would lose it entirely where the block is 1e50 along one
+  // tangent and 1 along the other, as beside a crease).
+  const S det = std::fma(b11, b22, -b12 * b12);
+  const S big = mean >= S(0) ? mean + half_gap : mean - half_gap;
+  const S small = big != S(0) ? det / big : S(0);
+  const S lowest = mean >= S(0) ? small : big, highest = mean >= S(0) ? big : small;
+  const S below = S(kConvexifyBelow) * scale, wanted = S(kConvexifyTo) * scale;
+  if (!(lowest < below) || !std::isfinite(lowest)) return {b11, b12, b22, false, false};
+  // The unit eigenvector (c, s) of the lowest eigenvalue, from the column of B − lowest·I with
+  // no cancellation: (b12, −(half_diff + half_gap)) where b11 ≥ b22, else
+  // (−(−half_diff + half_gap), b12), up to sign. Where half_gap = 0 the block is a multiple of I
+  // and both eigenvalues are replaced below, so any unit vector serves.
+  S c = b12, s = -(half_diff + half_gap);
+  if (half_diff < S(0)) {
+    c = half_diff - half_gap;
+    s = b12;
+  }
+  const S length = std::hypot(c, s);
+  if (length > S(0)) {
+    c /= length;
+    s /= length;
+  } else {
+    c = S(1);
+    s = S(0);
+  }
+  const S high = highest < below ? wanted : highest;
+  // M = wanted·(c, s)(c, s)ᵀ + high·(−s, c)(−s, c)ᵀ.
+  return {wanted * c * c + high * s * s, (wanted - high) * c * s, wanted * s * s + high * c * c,
+          true, lowest > S(0)};
+}
 
 /// The tangent basis t1 = n × helper takes helper = x̂ where |n_x| < this, else ŷ.
 constexpr double kTangentHelperSwitch = 0.6;

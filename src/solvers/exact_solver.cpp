@@ -110,6 +110,9 @@ class ExactSolver {
           best = projected;
         }
       }
+      // At a crease the surface formula's normal is one element of the normal cone, and Eq. 7
+      // with it stays large though the point is right: the contact direction may be another.
+      if (best.error > q_.tolerance) tryContactDirection(&best);
     }
     if (inside_) searchInside(g_y, &best);
     best.iterations = iterations_;  // all starts share one budget
@@ -190,6 +193,22 @@ class ExactSolver {
     return best;
   }
 
+  /// Outside, the best point N with the contact direction n = (Q − N)/‖Q − N‖ as its normal, if
+  /// n is in N's normal cone to the tolerance: the duality gap h(n) − n·N (h the support
+  /// function) is ≥ 0, and ‖Q − N‖ exceeds the distance by at most the gap, since every point
+  /// of the shape is at least n·Q − h(n) away. The candidate's error is the larger of the gap
+  /// and Eq. 7 with n (rounding: n is parallel to Q − N); kept if it beats best.
+  void tryContactDirection(Candidate<S>* best) const {
+    const Vector3<S> n = (y_ - best->point).normalized();
+    if (!n.allFinite()) return;
+    Candidate<S> c = *best;
+    c.normal = n;
+    const S gap = dual_.value(n) - n.dot(c.point);
+    c.error = std::isfinite(gap) ? std::max(std::abs(gap), errorAt(c.point, n))
+                                 : std::numeric_limits<S>::infinity();
+    if (isBetter(c, *best)) *best = c;
+  }
+
   /// Runs Newton from a start (the ray's surface point) and keeps the result if it beats best.
   void tryStart(const Vector3<S>& ray, Candidate<S>* best) {
     const Candidate<S> c = refine(candidateOnRay(ray));
@@ -258,29 +277,35 @@ class ExactSolver {
   /// The Newton matrix restricted to the tangent plane (normal n) must be positive definite
   /// for the step to head for a minimum of the distance. Outside it always is (the shape is
   /// convex); inside it is not beyond a focal point (|d| > a radius of curvature), where the
-  /// iterate sits near a saddle such as the tip of a creased shape (ε > 1). There (smallest
-  /// tangent eigenvalue below 1e-4 × `scale`) the matrix is shifted by a multiple of I until
-  /// that eigenvalue is 10 % of `scale`: a damped step uphill on the Lagrangian's curvature, not
-  /// toward the saddle. Near a focal ring (Q close to the axis of a round cross-section) or a
-  /// focal point (Q near the centre of a near-sphere) the smallest eigenvalue is small but
-  /// positive and the full Newton step is the one that converges (the shifted one creeps, by
-  /// about eigenvalue/(10 % of scale) per iteration), so a positive one comes back in
-  /// `full_step_first`: the caller tries the unshifted matrix first.
-  static Eigen::Matrix<S, 3, 3> convexified(const Eigen::Matrix<S, 3, 3>& a, const Vector3<S>& n,
-                                            S scale, bool* full_step_first) {
+  /// iterate sits near a saddle such as the tip of a creased shape (ε > 1). There (a tangent
+  /// eigenvalue below 1e-4 × `scale`) that eigenvalue alone is replaced by 10 % of `scale`, along
+  /// its own eigenvector: a damped step uphill on the Lagrangian's curvature in that direction,
+  /// not toward the saddle, and the plain Newton step in the other direction, whose curvature
+  /// is untouched (shifting both would make the iterate creep along a mirror plane whose
+  /// crossing direction is strongly negative). The step is then solved in the tangent basis
+  /// and comes back in `step` (not finite if singular); false means no eigenvalue needed it (plain
+  /// Newton applies). Near a focal ring (Q close to the axis of a round cross-section) or a focal
+  /// point (Q near the centre of a near-sphere) the smallest eigenvalue is small but positive and
+  /// the full Newton step is the one that converges (the replaced one creeps, by about
+  /// eigenvalue/(10 % of scale) per iteration), so a positive one comes back in
+  /// `full_step_first`: the caller tries the unmodified matrix first.
+  static bool convexifiedStep(const Eigen::Matrix<S, 3, 3>& a, const Vector3<S>& n,
+                              const Vector3<S>& r, S scale, Vector3<S>* step,
+                              bool* full_step_first) {
     // An orthonormal tangent basis t1, t2 of n, and the 2×2 tangent block.
     const Vector3<S> helper =
         std::abs(n[0]) < S(rules::kTangentHelperSwitch) ? Vector3<S>::UnitX() : Vector3<S>::UnitY();
     const Vector3<S> t1 = n.cross(helper).normalized();
     const Vector3<S> t2 = n.cross(t1);
     const S b11 = t1.dot(a * t1), b22 = t2.dot(a * t2), b12 = t1.dot(a * t2);
-    const S mean = (b11 + b22) / 2, half_gap = std::hypot((b11 - b22) / 2, b12);
-    const S lowest = mean - half_gap;
-    const S wanted = S(rules::kConvexifyTo) * scale;
-    *full_step_first = false;
-    if (lowest >= S(rules::kConvexifyBelow) * scale || !std::isfinite(lowest)) return a;
-    *full_step_first = lowest > S(0);
-    return a + (wanted - lowest) * Eigen::Matrix<S, 3, 3>::Identity();
+    const rules::TangentBlock<S> m = rules::convexifiedTangentBlock(b11, b12, b22, scale);
+    *full_step_first = m.full_step_first;
+    if (!m.modified) return false;
+    // δ = T·M⁻¹·Tᵀr with T = (t1, t2): the bordered system's step with M as its tangent block.
+    const S c1 = t1.dot(r), c2 = t2.dot(r);
+    const S det = m.m11 * m.m22 - m.m12 * m.m12;
+    *step = ((m.m22 * c1 - m.m12 * c2) / det) * t1 + ((m.m11 * c2 - m.m12 * c1) / det) * t2;
+    return true;
   }
 
   /// Solves the bordered system [A, b; bᵀ, 0]·[δ; δλ] = [r; s]; false if singular.
@@ -308,14 +333,15 @@ class ExactSolver {
       const Vector3<S> residual = y_ - c.point - mu * c.gradient;
       const Eigen::Matrix<S, 3, 3> raw = Eigen::Matrix<S, 3, 3>::Identity() + mu * c.hessian;
       bool full_step_first = false;
-      const Eigen::Matrix<S, 3, 3> a = convexified(raw, c.normal, S(1), &full_step_first);
+      Vector3<S> convexified_step;
+      const bool convexify =
+          convexifiedStep(raw, c.normal, residual, S(1), &convexified_step, &full_step_first);
       Vector3<S> step;
-      if (full_step_first && solveBordered(raw, c.gradient, residual, S(0), &step) &&
-          tryStep(&c, step)) {
-        continue;
+      if (!convexify || full_step_first) {
+        if (solveBordered(raw, c.gradient, residual, S(0), &step) && tryStep(&c, step)) continue;
+        if (!convexify) break;
       }
-      if (!solveBordered(a, c.gradient, residual, S(0), &step)) break;
-      if (!tryStep(&c, step)) break;
+      if (!convexified_step.allFinite() || !tryStep(&c, convexified_step)) break;
     }
     return c;
   }
@@ -333,7 +359,9 @@ class ExactSolver {
       const Vector3<S> residual = y_ - point - d * n;
       const Eigen::Matrix<S, 3, 3> raw = e.hessian + d * Eigen::Matrix<S, 3, 3>::Identity();
       bool full_step_first = false;
-      const Eigen::Matrix<S, 3, 3> a = convexified(raw, n, std::abs(d), &full_step_first);
+      Vector3<S> convexified_step;
+      const bool convexify =
+          convexifiedStep(raw, n, residual, std::abs(d), &convexified_step, &full_step_first);
       // A step with halving; true if a trial reduced the error.
       auto try_dual_step = [&](Vector3<S> step) {
         for (int trial_step = 0; trial_step < rules::kStepTrials; ++trial_step) {
@@ -354,11 +382,11 @@ class ExactSolver {
         return false;
       };
       Vector3<S> step;
-      if (full_step_first && solveBordered(raw, n, residual, S(0), &step) && try_dual_step(step)) {
-        continue;
+      if (!convexify || full_step_first) {
+        if (solveBordered(raw, n, residual, S(0), &step) && try_dual_step(step)) continue;
+        if (!convexify) break;
       }
-      if (!solveBordered(a, n, residual, S(0), &step)) break;
-      if (!try_dual_step(step)) break;
+      if (!convexified_step.allFinite() || !try_dual_step(convexified_step)) break;
     }
     // Back to the primal's view of the final point (its own normal, gradient and Hessian), so
     // the error reported and any primal iterations that follow are the primal's.
