@@ -32,6 +32,17 @@ S absoluteTolerance(S relative_tolerance, S size, S query_norm) {
 /// start that leads to the answer.
 constexpr int kIterationsPerStart = 60;
 
+/// Inside, a Newton run whose error has not fallen below kStallFactor × its value kStallWindow
+/// iterations earlier counts as stalled and stops: creeping along a flat valley (a focal ring, a
+/// near-sphere's centre) cuts the error by far less, converging Newton by far more.
+constexpr int kStallWindow = 10;
+constexpr double kStallFactor = 0.5;
+
+/// Inside, a start rotated onto Q's meridian about an axis (the scalar solver's ring starts,
+/// ExactSolver::tryRingRotations) converges in one to three iterations where the nearest points
+/// form a ring; it gets this many, so it cannot starve the other starts where they do not.
+constexpr int kRingStartIterations = 8;
+
 /// A Newton step that does not reduce the error is halved: the full step and this many − 1
 /// halvings are tried (step, step/2, …, step/16) before the formulation counts as stalled.
 constexpr int kStepTrials = 5;

@@ -35,10 +35,12 @@
 // Convergence is judged by the paper's error (Eq. 7) so all methods share one yardstick.
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <array>
 #include <cmath>
 
 #include "shape/nested_norm.h"
+#include "solvers/ball_certificate.h"
 #include "solvers/exact_rules.h"
 #include "solvers/outside_projection.h"
 #include "solvers/solvers.h"
@@ -121,35 +123,27 @@ class ExactSolver {
 
  private:
   /// Inside, the problem is not convex: starts beyond the radial one, until the best answer so far
-  /// is certified to be the global nearest point (exact_rules::certifiedGlobal: the ball around
-  /// Q through it lies inside the shape, so nothing on the surface is nearer).
+  /// is certified to be the global nearest point: the ball around Q through it lies inside the
+  /// shape, so nothing on the surface is nearer (exact_rules::certifiedGlobal, the rolling ball,
+  /// or ball_certificate.h, the Hessian bound over that ball).
   void searchInside(S g_y, Candidate<S>* best) {
     const S rolling_radius = q_.shape.minRadiusOfCurvature();
+    Vector3<S> checked = Vector3<S>::Constant(S(-1));  // the last answer the Hessian ball refused
     auto certified = [&] {
-      return best->error <= q_.tolerance &&
-             rules::certifiedGlobal((y_ - best->point).norm(), q_.tolerance, rolling_radius);
+      if (best->error > q_.tolerance) return false;
+      const S distance = (y_ - best->point).norm();
+      if (rules::certifiedGlobal(distance, q_.tolerance, rolling_radius)) return true;
+      if (best->point == checked) return false;
+      checked = best->point;
+      return hessianBallCertified(primal_, y_, best->gradient, distance, best->error);
     };
     if (certified()) return;
     for (const Vector3<S>& start : axisProjections()) {
       tryStart(start, best);
       if (certified()) return;
     }
-    // Deep in an elongated shape the nearest point can lie off the axis directions of the
-    // cross-section through Q (a diamond-like cross-section, ε > 1, is nearest on its
-    // diagonal faces). When the answer so far is farther than a quarter of a cross-section's
-    // smaller radius, start once more along that cross-section's diagonal.
-    const Vector3<S>& a = q_.shape.radii();
-    const S best_distance = (y_ - best->point).norm();
-    for (int i = 0; i < 3; ++i) {
-      const int j = (i + 1) % 3, k = (i + 2) % 3;
-      if (best_distance > S(rules::kDiagonalStartDepth) * std::min(a[j], a[k])) {
-        Vector3<S> start = y_;
-        start[j] += S(0.5) * a[j];
-        start[k] += S(0.5) * a[k];
-        tryStart(start, best);
-        if (certified()) return;
-      }
-    }
+    tryRingRotations(best);  // if nothing converged: a start creeping along a ring (below)
+    if (certified()) return;
     // On a coordinate plane every start above lies on it too, and the plane is a mirror
     // symmetry: Newton never leaves it, though for ε > 1 the nearest points can be off it
     // (the plane is a saddle there). Start once more from a point tilted off each such plane.
@@ -166,9 +160,60 @@ class ExactSolver {
     }
     if (planes > 1) tryStart(all_tilted, best);
     if (certified()) return;
+    // Deep in an elongated shape the nearest point can lie off the axis directions of the
+    // cross-section through Q (a diamond-like cross-section, ε > 1, is nearest on its
+    // diagonal faces). When the answer so far is farther than a quarter of a cross-section's
+    // smaller radius, start once more along that cross-section's diagonal.
+    const Vector3<S>& a = q_.shape.radii();
+    const S best_distance = (y_ - best->point).norm();
+    for (int i = 0; i < 3; ++i) {
+      const int j = (i + 1) % 3, k = (i + 2) % 3;
+      if (best_distance > S(rules::kDiagonalStartDepth) * std::min(a[j], a[k])) {
+        Vector3<S> start = y_;
+        start[j] += S(0.5) * a[j];
+        start[k] += S(0.5) * a[k];
+        tryStart(start, best);
+        if (certified()) return;
+      }
+    }
+    tryRingRotations(best);            // if nothing converged yet
     if (g_y < S(rules::kDeepGauge)) {  // deep inside: the centre's candidates may be nearer
       const Candidate<S> other = solveAtCentre();
       if (isBetter(other, *best)) *best = other;
+    }
+  }
+
+  /// Near the axis of a (nearly) round cross-section the nearest points form a (nearly)
+  /// degenerate ring around that axis, a valley in which Newton's straight steps leave the
+  /// valley and are halved to nothing: starts creep along the ring (docs/hardening.md,
+  /// finding 12). If no start has converged, the best point rotated about an axis into Q's
+  /// meridian plane (its distance from the axis and its height kept) lands on the ring's
+  /// lowest point for a surface of revolution and next to it for a nearly round one. The axes
+  /// go in the order of how nearly the rotated point stays on the surface. Such a start
+  /// converges in a few iterations where it applies, so each gets a small share of the budget.
+  void tryRingRotations(Candidate<S>* best) {
+    if (best->error <= q_.tolerance) return;
+    std::array<std::pair<S, Vector3<S>>, 3> rotations;
+    int count = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      const int j = (axis + 1) % 3, k = (axis + 2) % 3;
+      const S q_radius = std::hypot(y_[j], y_[k]);
+      const S n_radius = std::hypot(best->point[j], best->point[k]);
+      if (!(q_radius > S(0))) continue;
+      Vector3<S> rotated;
+      rotated[axis] = best->point[axis];
+      rotated[j] = n_radius * (y_[j] / q_radius);
+      rotated[k] = n_radius * (y_[k] / q_radius);
+      // Already in Q's meridian about this axis (to √ε × size): nothing to gain.
+      if ((rotated - best->point).norm() <= rules::nearPlaneFraction<S>() * q_.shape.size()) {
+        continue;
+      }
+      rotations[count++] = {std::abs(primal_.value(rotated) - S(1)), rotated};
+    }
+    std::sort(rotations.begin(), rotations.begin() + count,
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (int i = 0; i < count && best->error > q_.tolerance; ++i) {
+      tryStart(rotations[i].second, best, rules::kRingStartIterations);
     }
   }
 
@@ -210,16 +255,16 @@ class ExactSolver {
   }
 
   /// Runs Newton from a start (the ray's surface point) and keeps the result if it beats best.
-  void tryStart(const Vector3<S>& ray, Candidate<S>* best) {
-    const Candidate<S> c = refine(candidateOnRay(ray));
+  void tryStart(const Vector3<S>& ray, Candidate<S>* best, int share = rules::kIterationsPerStart) {
+    const Candidate<S> c = refine(candidateOnRay(ray), share);
     if (isBetter(c, *best)) *best = c;
   }
 
   /// Newton in the smoother formulation first; if that stalls, in the other, warm-started where
   /// the first stopped and then from the original start.
-  Candidate<S> refine(Candidate<S> c) {
+  Candidate<S> refine(Candidate<S> c, int share = rules::kIterationsPerStart) {
     // Each start gets at most its share of the budget (exact_rules.h).
-    limit_ = std::min(q_.max_iterations, iterations_ + rules::kIterationsPerStart);
+    limit_ = std::min(q_.max_iterations, iterations_ + share);
     const Candidate<S> start = c;
     c = primal_first_ ? newtonPrimal(c) : newtonDual(c);
     if (c.error > q_.tolerance && iterations_ < limit_) {
@@ -324,8 +369,31 @@ class ExactSolver {
     return true;
   }
 
+  /// Stall detection of one Newton run inside the shape (exact_rules::kStallWindow): false once
+  /// a window of iterations has not cut the error by kStallFactor, so a start creeping along a
+  /// flat valley hands the budget on to the next start instead of spending its whole share.
+  /// (Outside, one start is usually all there is, and the nested projection backs it up.)
+  class Progress {
+   public:
+    Progress(S error, int iteration, bool active)
+        : reference_(error), checkpoint_(iteration), active_(active) {}
+    bool keeps(S error, int iteration) {
+      if (!active_ || iteration - checkpoint_ < rules::kStallWindow) return true;
+      if (!(error <= S(rules::kStallFactor) * reference_)) return false;
+      reference_ = error;
+      checkpoint_ = iteration;
+      return true;
+    }
+
+   private:
+    S reference_;
+    int checkpoint_;
+    bool active_;
+  };
+
   Candidate<S> newtonPrimal(Candidate<S> c) {
-    while (c.error > q_.tolerance && iterations_ < limit_) {
+    Progress progress(c.error, iterations_, inside_);
+    while (c.error > q_.tolerance && iterations_ < limit_ && progress.keeps(c.error, iterations_)) {
       ++iterations_;
       // ∇G and ∇²G at c.point come with the candidate (one evaluation per trial point).
       const S mu = c.gradient.dot(y_ - c.point) / c.gradient.squaredNorm();
@@ -352,7 +420,8 @@ class ExactSolver {
     Vector3<S> n = c.normal;
     NestedNormEval<S> e = dual_.evaluate(n, true);
     bool moved = false;
-    while (c.error > q_.tolerance && iterations_ < limit_) {
+    Progress progress(c.error, iterations_, inside_);
+    while (c.error > q_.tolerance && iterations_ < limit_ && progress.keeps(c.error, iterations_)) {
       ++iterations_;
       const Vector3<S> point = e.gradient;
       const S d = n.dot(y_ - point);

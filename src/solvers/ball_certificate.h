@@ -1,0 +1,103 @@
+#ifndef FCL_SUPERELLIPSOID_SRC_SOLVERS_BALL_CERTIFICATE_H
+#define FCL_SUPERELLIPSOID_SRC_SOLVERS_BALL_CERTIFICATE_H
+
+// Internal: the Hessian-ball certificate of an inside answer (docs/math.md → "The Hessian-ball
+// certificate"). Inside, Newton converges to a local nearest point N at distance d from Q; it
+// is the global one if no surface point is nearer, that is if the ball B(Q, d) lies inside the
+// shape. With n the unit normal at N and Q' = N − d·n (Q itself up to paper Eq. 7's error),
+// Taylor's theorem on the segment from N to a point P of B(Q', d) gives, since G(N) = 1,
+//
+//   G(P) ≤ 1 + ∇G(N)·(P − N) + ½·M·‖P − N‖²,   M ≥ ‖∇²G‖ everywhere on B(Q', d).
+//
+// With P = Q' + d·u (u a unit vector, c = u·n): ∇G(N)·(P − N) = −‖∇G(N)‖·d·(1 − c) and
+// ‖P − N‖² = 2·d²·(1 − c), so G(P) ≤ 1 − d·(1 − c)·(‖∇G(N)‖ − M·d) ≤ 1 whenever
+//
+//   M·d ≤ ‖∇G(N)‖.
+//
+// Then B(Q', d) lies inside the shape, every surface point is at least d from Q' and at least
+// d − ‖Q − Q'‖ from Q: N is the global answer up to the error it already carries. Unlike the
+// rolling-ball certificate it needs no global curvature bound, only one over the small ball,
+// so it also holds on creased shapes (ε > 1) away from their creases, where ∇²G is unbounded.
+//
+// M comes from a closed form. For a 2-argument p-norm N(a, b) with ratios ta = a/N, tb = b/N,
+//   ∇²N = (p − 1)/N · (ta·tb)^(p−2) · (tb, −ta)(tb, −ta)ᵀ,
+// a rank-one matrix, so for the nested gauge G = N2(N1(s1·x, s2·y), s3·z) (nested_norm.h;
+// r = N1, t1 = s1·x/r, t2 = s2·y/r, tr = r/G, t3 = s3·z/G) the chain rule gives
+//   ‖∇²G‖ ≤ tr^(p2−1)·(p1 − 1)/r·(t1·t2)^(p1−2)·(s1²·t2² + s2²·t1²)
+//         + (p2 − 1)/G·(tr·t3)^(p2−2)·(t3²·(s1²·t1^(2p1−2) + s2²·t2^(2p1−2)) + tr²·s3²).
+// Over a box [lo, hi] of the first octant every quantity is monotone in each coordinate (the
+// norms grow with every argument; a ratio grows with its own argument and falls with the
+// other), so each is bounded by evaluating it at the box's corners, and each power by the end
+// of its range that makes it largest. A box that reaches a coordinate plane where p < 2 (a
+// crease, ε > 1) gives an infinite bound: not certified.
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "shape/nested_norm.h"
+
+namespace fcl_superellipsoid {
+namespace detail {
+
+/// An upper bound of ‖∇²G‖ (spectral norm) over the box [lo, hi] of the first octant
+/// (0 ≤ lo ≤ hi), for the gauge G of `gauge`; +∞ or NaN where none is finite.
+template <typename S>
+S hessianNormBound(const NestedNorm<S>& gauge, const Vector3<S>& lo, const Vector3<S>& hi) {
+  const S p1 = gauge.p1, p2 = gauge.p2;
+  const Vector3<S> ul = lo.cwiseProduct(gauge.scale), uh = hi.cwiseProduct(gauge.scale);
+  auto n1 = [&](S a, S b) { return pnorm2(a, b, p1, gauge.inv_p1); };
+  auto n2 = [&](S a, S b) { return pnorm2(a, b, p2, gauge.inv_p2); };
+  // t^k for t in [t_lo, t_hi] ⊂ [0, 1], at its largest.
+  auto power = [](S t_lo, S t_hi, S k) {
+    return k >= S(0) ? std::pow(t_hi, k) : std::pow(t_lo, k);
+  };
+  const S one = S(1);
+  // The first level: r and the ratios t1, t2.
+  const S r_lo = n1(ul[0], ul[1]), r_hi = n1(uh[0], uh[1]);
+  const S r_12 = n1(ul[0], uh[1]), r_21 = n1(uh[0], ul[1]);  // mixed corners
+  const S t1_lo = ul[0] / r_12, t1_hi = std::min(one, uh[0] / r_21);
+  const S t2_lo = ul[1] / r_21, t2_hi = std::min(one, uh[1] / r_12);
+  // The second level: G and the ratios tr, t3.
+  const S g_lo = n2(r_lo, ul[2]);
+  const S g_r3 = n2(r_lo, uh[2]), g_3r = n2(r_hi, ul[2]);  // mixed corners
+  const S tr_lo = r_lo / g_r3, tr_hi = std::min(one, r_hi / g_3r);
+  const S t3_lo = ul[2] / g_3r, t3_hi = std::min(one, uh[2] / g_r3);
+  const S s1 = gauge.scale[0] * gauge.scale[0], s2 = gauge.scale[1] * gauge.scale[1];
+  const S s3 = gauge.scale[2] * gauge.scale[2];
+  const S first = power(tr_lo, tr_hi, p2 - one) * (p1 - one) / r_lo *
+                  power(t1_lo * t2_lo, t1_hi * t2_hi, p1 - S(2)) *
+                  (s1 * t2_hi * t2_hi + s2 * t1_hi * t1_hi);
+  const S second = (p2 - one) / g_lo * power(tr_lo * t3_lo, tr_hi * t3_hi, p2 - S(2)) *
+                   (t3_hi * t3_hi *
+                        (s1 * power(t1_lo, t1_hi, S(2) * p1 - S(2)) +
+                         s2 * power(t2_lo, t2_hi, S(2) * p1 - S(2))) +
+                    tr_hi * tr_hi * s3);
+  return first + second;
+}
+
+/// The certificate above for a converged inside answer, in the first octant: Q (y), its
+/// nearest point N (on the surface) with the gauge's gradient there, the distance d = ‖Q − N‖
+/// and Eq. 7's error. The ball B(Q', d) lies within d + error of Q; its box is clamped to the
+/// octant (the gauge is mirror-symmetric, so a box reaching across a plane is bounded by its
+/// folded part, and the closed form is infinite there exactly where G is not C²). The bound is
+/// exact in real arithmetic; a 1 % margin covers its rounding.
+template <typename S>
+bool hessianBallCertified(const NestedNorm<S>& gauge, const Vector3<S>& y,
+                          const Vector3<S>& gradient_at_n, S distance, S error) {
+  const S reach = distance + error;
+  const Vector3<S> lo = (y.array() - reach).max(S(0)).matrix();
+  const Vector3<S> hi = (y.array() + reach).matrix();
+  // Where the box reaches a crease (a plane whose level has p < 2) or the z axis the bound is
+  // infinite: decided here without its pow() calls.
+  const bool crease_xy = gauge.p1 < S(2) && (lo[0] == S(0) || lo[1] == S(0));
+  const bool crease_z = gauge.p2 < S(2) && lo[2] == S(0);
+  if (crease_xy || crease_z || (lo[0] == S(0) && lo[1] == S(0))) return false;
+  const S m = hessianNormBound(gauge, lo, hi);
+  return S(1.01) * m * distance <= gradient_at_n.norm();
+}
+
+}  // namespace detail
+}  // namespace fcl_superellipsoid
+
+#endif  // FCL_SUPERELLIPSOID_SRC_SOLVERS_BALL_CERTIFICATE_H

@@ -1,0 +1,174 @@
+// The Hessian-ball certificate of inside answers (src/solvers/ball_certificate.h): its Hessian
+// bound against an independent long-double finite-difference Hessian of the reference gauge,
+// and the certificate itself against the long-double reference on stationary points built by
+// construction, most of which are not the global nearest point: where it holds, the sampled
+// sphere of the ball stays inside the reference gauge and the point is the reference's nearest.
+
+#include <array>
+#include <cmath>
+#include <random>
+
+#include "fcl_superellipsoid/point_distance.h"
+#include "reference_distance.h"
+#include "shape/nested_norm.h"
+#include "solvers/ball_certificate.h"
+#include "test_helpers.h"
+
+namespace fcl_superellipsoid {
+namespace {
+
+using Vec = std::array<long double, 3>;
+
+/// The spectral norm of the Hessian of the reference gauge at x, by central differences in
+/// long double (step h), and the eigenvalues of the symmetric 3×3 result by Jacobi rotations.
+long double referenceHessianNorm(const test::ReferenceDistance& reference, const Vec& x,
+                                 long double h) {
+  long double m[3][3];
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      auto at = [&](int si, int sj) {
+        Vec p = x;
+        p[i] += si * h;
+        p[j] += sj * h;
+        return reference.gauge(p);
+      };
+      m[i][j] = (at(1, 1) - at(1, -1) - at(-1, 1) + at(-1, -1)) / (4 * h * h);
+    }
+  }
+  for (int sweep = 0; sweep < 50; ++sweep) {
+    for (int p = 0; p < 3; ++p) {
+      for (int q = p + 1; q < 3; ++q) {
+        if (std::abs(m[p][q]) < 1e-30L) continue;
+        const long double theta = (m[q][q] - m[p][p]) / (2 * m[p][q]);
+        const long double t =
+            (theta >= 0 ? 1 : -1) / (std::abs(theta) + std::sqrt(theta * theta + 1));
+        const long double c = 1 / std::sqrt(t * t + 1), s = t * c;
+        for (int k = 0; k < 3; ++k) {  // columns p, q
+          const long double a = m[k][p], b = m[k][q];
+          m[k][p] = c * a - s * b;
+          m[k][q] = s * a + c * b;
+        }
+        for (int k = 0; k < 3; ++k) {  // rows p, q
+          const long double a = m[p][k], b = m[q][k];
+          m[p][k] = c * a - s * b;
+          m[q][k] = s * a + c * b;
+        }
+      }
+    }
+  }
+  return std::max({std::abs(m[0][0]), std::abs(m[1][1]), std::abs(m[2][2])});
+}
+
+const std::array<double, 5> kShapes[] = {
+    {1, 1, 1, 1.35, 1.35}, {1, 1, 1, 1.7, 1.7},  {1, 1, 1, 1, 1.6},     {1, 1, 1, 1.9, 1.9},
+    {1, 1, 1, 0.1, 1.9},   {1, 1, 1, 0.3, 0.3},  {3.5, 3, 2, 0.4, 0.3}, {1, 2, 0.5, 0.65, 1.2},
+    {4, 1, 1, 1.5, 0.8},   {1, 1, 1, 0.02, 1.0}, {2, 2, 0.2, 1.0, 1.98}};
+
+TEST(HessianBall, BoundsTheHessianOverItsBox) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0, 1);
+  int boxes = 0;
+  for (const auto& p : kShapes) {
+    const Superellipsoid<double> shape{p[0], p[1], p[2], p[3], p[4]};
+    SCOPED_TRACE(test::describe(shape));
+    const test::ReferenceDistance reference({p[0], p[1], p[2]}, p[3], p[4]);
+    const auto gauge = detail::NestedNorm<double>::gauge(shape);
+    for (int k = 0; k < 40; ++k) {
+      // A box around a point of the first octant inside the shape, half-width up to 0.2 × size.
+      const Vector3<double> centre(u(rng) * p[0] * 0.8, u(rng) * p[1] * 0.8, u(rng) * p[2] * 0.8);
+      const double half = shape.size() * 0.2 * std::pow(u(rng), 2);
+      const Vector3<double> lo = (centre.array() - half).max(0.0).matrix();
+      const Vector3<double> hi = (centre.array() + half).matrix();
+      const double bound = detail::hessianNormBound(gauge, lo, hi);
+      if (!std::isfinite(bound)) continue;  // reaches a crease: nothing is claimed
+      ++boxes;
+      for (int j = 0; j < 25; ++j) {
+        const Vec x{lo[0] + (hi[0] - lo[0]) * u(rng), lo[1] + (hi[1] - lo[1]) * u(rng),
+                    lo[2] + (hi[2] - lo[2]) * u(rng)};
+        // The step stays inside the box's folded region and small against the distance to
+        // any crease (the bound is finite, so lo > 0 wherever a crease could be).
+        long double h = 1e-4L * shape.size();
+        for (int i = 0; i < 3; ++i) {
+          if (lo[i] > 0) h = std::min(h, 0.01L * x[i]);
+        }
+        const long double norm = referenceHessianNorm(reference, x, h);
+        EXPECT_LE(double(norm), bound * (1 + 1e-4) + 1e-9)
+            << "at " << double(x[0]) << ", " << double(x[1]) << ", " << double(x[2])
+            << " in the box " << lo.transpose() << " .. " << hi.transpose();
+      }
+    }
+  }
+  EXPECT_GT(boxes, 200);  // most boxes do get a finite bound
+}
+
+TEST(HessianBall, CertifiesOnlyGlobalNearestPoints) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  test::AngleSampler angles(9);
+  int certified = 0, wrong_local = 0, total = 0;
+  for (const auto& p : kShapes) {
+    const Superellipsoid<double> shape{p[0], p[1], p[2], p[3], p[4]};
+    SCOPED_TRACE(test::describe(shape));
+    const test::ReferenceDistance reference({p[0], p[1], p[2]}, p[3], p[4]);
+    const auto gauge = detail::NestedNorm<double>::gauge(shape);
+    const double min_radius = std::min({p[0], p[1], p[2]});
+    for (int k = 0; k < 60; ++k) {
+      // A stationary point of the distance by construction: Q = N − d·n for a surface point N
+      // of the first octant and its normal n, d from shallow to beyond the smallest radius
+      // (where N is usually a local minimum or a saddle, not the global answer).
+      const auto [eta, omega] = angles();
+      const Vector3<double> n_point = shape.surfacePoint(eta, omega).cwiseAbs();
+      const Vector3<double> normal = shape.normal(n_point);
+      const double d = min_radius * std::pow(10.0, -3 + 3.2 * u(rng));
+      const Vector3<double> y = n_point - d * normal;
+      if ((y.array() < 0).any()) continue;  // Q left the first octant: another octant's point
+      ++total;
+      const Vector3<double> gradient = gauge.evaluate(n_point, false).gradient;
+      if (!detail::hessianBallCertified(gauge, y, gradient, d, 0.0)) continue;
+      ++certified;
+      // The claim itself: the ball B(Q, d) lies inside the shape (its sphere, sampled).
+      std::normal_distribution<double> g(0, 1);
+      long double worst = 0;
+      for (int j = 0; j < 200; ++j) {
+        Vector3<double> dir(g(rng), g(rng), g(rng));
+        dir.normalize();
+        const Vector3<double> on_sphere = y + d * dir;
+        worst = std::max(worst, reference.gauge({on_sphere[0], on_sphere[1], on_sphere[2]}));
+      }
+      EXPECT_LE(double(worst), 1 + 1e-12) << "Q = " << y.transpose() << ", d = " << d;
+      const auto truth = reference.query({y[0], y[1], y[2]});
+      if (double(-truth.distance) < d - 1e-9 * shape.size()) ++wrong_local;
+      EXPECT_NEAR(double(-truth.distance), d, 1e-9 * shape.size())
+          << "certified a point that is not the nearest: Q = " << y.transpose()
+          << ", N = " << n_point.transpose();
+    }
+  }
+  EXPECT_EQ(wrong_local, 0);
+  EXPECT_GT(certified, total / 5) << "the certificate should hold on many shallow points";
+}
+
+// The certificate in the solver: on creased shapes the paper's −0.015 points are answered by
+// the first start wherever it holds, and every answer is the reference's.
+TEST(HessianBall, InsideAnswersOnCreasedShapesStayGlobal) {
+  test::AngleSampler angles(21);
+  for (const auto& p : kShapes) {
+    const Superellipsoid<double> shape{p[0], p[1], p[2], p[3], p[4]};
+    SCOPED_TRACE(test::describe(shape));
+    const test::ReferenceDistance reference({p[0], p[1], p[2]}, p[3], p[4]);
+    for (int k = 0; k < 30; ++k) {
+      const auto [eta, omega] = angles();
+      const Vector3<double> s = shape.surfacePoint(eta, omega);
+      for (double depth : {0.015, 0.1}) {
+        const Vector3<double> x = s - depth * shape.size() * shape.normal(s);
+        const auto r = pointDistance(shape, x);
+        EXPECT_TRUE(r.converged);
+        const auto truth = reference.query({x[0], x[1], x[2]});
+        EXPECT_NEAR(r.distance, double(truth.distance), 1e-9 * shape.size())
+            << "Q = " << x.transpose();
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace fcl_superellipsoid
