@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "shape/nested_norm.h"
+#include "shape/symmetric2.h"
 
 namespace fcl_superellipsoid {
 namespace detail {
@@ -46,10 +47,8 @@ double smallestRadiusAt(const NestedNorm<double>& support, const Eigen::Vector3d
   const Eigen::Vector3d t1 = u.cross(helper).normalized();
   const Eigen::Vector3d t2 = u.cross(t1);
   const double b11 = t1.dot(h * t1), b22 = t2.dot(h * t2), b12 = t1.dot(h * t2);
-  // The smaller eigenvalue as det/λmax: mean − half-gap would cancel to 0 where the larger one
-  // is many orders of magnitude above it (near a face, where the other radius is huge).
-  const double largest = 0.5 * (b11 + b22) + std::hypot(0.5 * (b11 - b22), b12);
-  const double lowest = (b11 * b22 - b12 * b12) / largest;
+  // Near a face the other radius is many orders of magnitude larger (symmetric2.h).
+  const double lowest = eigenvalues2(b11, b12, b22).lowest;
   return std::isfinite(lowest) ? std::max(lowest, 0.0) : 0.0;
 }
 

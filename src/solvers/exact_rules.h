@@ -10,6 +10,8 @@
 #include <cmath>
 #include <limits>
 
+#include "shape/symmetric2.h"
+
 namespace fcl_superellipsoid {
 namespace detail {
 namespace exact_rules {
@@ -75,15 +77,8 @@ struct TangentBlock {
 /// (batch_kernel.cpp, tangentSteps) computes the same formulas lane by lane.
 template <typename S>
 TangentBlock<S> convexifiedTangentBlock(S b11, S b12, S b22, S scale) {
-  const S mean = (b11 + b22) / 2, half_diff = (b11 - b22) / 2;
-  const S half_gap = std::hypot(half_diff, b12);
-  // The eigenvalue of larger magnitude is mean ± half_gap without cancellation; the other is
-  // det/that one (mean ∓ half_gap would lose it entirely where the block is 1e50 along one
-  // tangent and 1 along the other, as beside a crease).
-  const S det = std::fma(b11, b22, -b12 * b12);
-  const S big = mean >= S(0) ? mean + half_gap : mean - half_gap;
-  const S small = big != S(0) ? det / big : S(0);
-  const S lowest = mean >= S(0) ? small : big, highest = mean >= S(0) ? big : small;
+  const S half_diff = (b11 - b22) / 2, half_gap = std::hypot(half_diff, b12);
+  const auto [lowest, highest] = eigenvalues2(b11, b12, b22);  // no cancellation beside a crease
   const S below = S(kConvexifyBelow) * scale, wanted = S(kConvexifyTo) * scale;
   if (!(lowest < below) || !std::isfinite(lowest)) return {b11, b12, b22, false, false};
   // The unit eigenvector (c, s) of the lowest eigenvalue, from the column of B − lowest·I with

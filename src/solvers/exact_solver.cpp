@@ -38,6 +38,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 
 #include "shape/nested_norm.h"
 #include "solvers/ball_certificate.h"
@@ -210,8 +211,11 @@ class ExactSolver {
       }
       rotations[count++] = {std::abs(primal_.value(rotated) - S(1)), rotated};
     }
-    std::sort(rotations.begin(), rotations.begin() + count,
-              [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (int i = 1; i < count; ++i) {  // at most three: insertion order by the first member
+      for (int k = i; k > 0 && rotations[k].first < rotations[k - 1].first; --k) {
+        std::swap(rotations[k], rotations[k - 1]);
+      }
+    }
     for (int i = 0; i < count && best->error > q_.tolerance; ++i) {
       tryStart(rotations[i].second, best, rules::kRingStartIterations);
     }
