@@ -47,6 +47,12 @@ constexpr int kRingStartIterations = 8;
 
 /// A Newton step that does not reduce the error is halved: the full step and this many − 1
 /// halvings are tried (step, step/2, …, step/16) before the formulation counts as stalled.
+/// Second-order correction (scalar solver): before a refused full Newton step is halved, one
+/// more Newton step is taken from the point it reached, and the pair is accepted (counted as one
+/// more iteration) if that reduces the error. A straight step along a valley that is flat one way
+/// and curved the other lands at the right place along it but off its floor; the next step puts
+/// it back, where halving would creep (docs/hardening.md, finding 13). The SIMD kernel does
+/// not: the queries it does not converge go to the scalar solver.
 constexpr int kStepTrials = 5;
 
 /// An iterate component that would turn negative (leave the first octant) shrinks to this

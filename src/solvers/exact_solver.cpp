@@ -128,6 +128,7 @@ class ExactSolver {
   /// shape, so nothing on the surface is nearer (exact_rules::certifiedGlobal, the rolling ball,
   /// or ball_certificate.h, the Hessian bound over that ball).
   void searchInside(S g_y, Candidate<S>* best) {
+    noteSurfacePoint(best->point);
     const S rolling_radius = q_.shape.minRadiusOfCurvature();
     Vector3<S> checked = Vector3<S>::Constant(S(-1));  // the last answer the Hessian ball refused
     auto certified = [&] {
@@ -187,26 +188,31 @@ class ExactSolver {
   /// Near the axis of a (nearly) round cross-section the nearest points form a (nearly)
   /// degenerate ring around that axis, a valley in which Newton's straight steps leave the
   /// valley and are halved to nothing: starts creep along the ring (docs/hardening.md,
-  /// finding 12). If no start has converged, the best point rotated about an axis into Q's
-  /// meridian plane (its distance from the axis and its height kept) lands on the ring's
-  /// lowest point for a surface of revolution and next to it for a nearly round one. The axes
-  /// go in the order of how nearly the rotated point stays on the surface. Such a start
-  /// converges in a few iterations where it applies, so each gets a small share of the budget.
+  /// finding 12). If no start has converged, the nearest surface point found so far rotated
+  /// about an axis into Q's meridian plane (its distance from the axis and its height kept)
+  /// lands on the ring's lowest point for a surface of revolution and next to it for a nearly
+  /// round one. (The nearest point, not the one of smallest error: a start stuck on a mirror
+  /// plane's saddle can have a smaller error than one creeping along the ring, but every
+  /// surface point bounds the distance from above, so the nearest one is the closer guess.)
+  /// The axes go in the order of how nearly the rotated point stays on the surface. Such a
+  /// start converges in a few iterations where it applies, so each gets a small share of the
+  /// budget.
   void tryRingRotations(Candidate<S>* best) {
     if (best->error <= q_.tolerance) return;
+    const Vector3<S> seed = nearest_point_;
     std::array<std::pair<S, Vector3<S>>, 3> rotations;
     int count = 0;
     for (int axis = 0; axis < 3; ++axis) {
       const int j = (axis + 1) % 3, k = (axis + 2) % 3;
       const S q_radius = std::hypot(y_[j], y_[k]);
-      const S n_radius = std::hypot(best->point[j], best->point[k]);
+      const S n_radius = std::hypot(seed[j], seed[k]);
       if (!(q_radius > S(0))) continue;
       Vector3<S> rotated;
-      rotated[axis] = best->point[axis];
+      rotated[axis] = seed[axis];
       rotated[j] = n_radius * (y_[j] / q_radius);
       rotated[k] = n_radius * (y_[k] / q_radius);
       // Already in Q's meridian about this axis (to √ε × size): nothing to gain.
-      if ((rotated - best->point).norm() <= rules::nearPlaneFraction<S>() * q_.shape.size()) {
+      if ((rotated - seed).norm() <= rules::nearPlaneFraction<S>() * q_.shape.size()) {
         continue;
       }
       rotations[count++] = {std::abs(primal_.value(rotated) - S(1)), rotated};
@@ -261,7 +267,17 @@ class ExactSolver {
   /// Runs Newton from a start (the ray's surface point) and keeps the result if it beats best.
   void tryStart(const Vector3<S>& ray, Candidate<S>* best, int share = rules::kIterationsPerStart) {
     const Candidate<S> c = refine(candidateOnRay(ray), share);
+    noteSurfacePoint(c.point);
     if (isBetter(c, *best)) *best = c;
+  }
+
+  /// Keeps the surface point nearest to Q among the starts' answers (tryRingRotations).
+  void noteSurfacePoint(const Vector3<S>& point) {
+    const S squared = (y_ - point).squaredNorm();
+    if (squared < nearest_squared_) {
+      nearest_squared_ = squared;
+      nearest_point_ = point;
+    }
   }
 
   /// Newton in the smoother formulation first; if that stalls, in the other, warm-started where
@@ -321,6 +337,31 @@ class ExactSolver {
       if (!(out[i] >= S(0))) out[i] = S(rules::kOctantShrink) * from[i];
     }
     return out;
+  }
+
+  /// One Newton system [matrix, border; borderᵀ, 0]·[δ; δλ] = [residual; 0]; `scale` is the
+  /// length that sets convexification's thresholds.
+  struct NewtonSystem {
+    Vector3<S> residual;
+    Eigen::Matrix<S, 3, 3> matrix;
+    S scale;
+  };
+
+  /// Primal, at a surface point N (border ∇G): residual of Q − N = μ∇G with μ its least-squares
+  /// multiplier (G(N) = 1 holds: N is re-projected every step), matrix I + μ∇²G. ∇G and ∇²G at
+  /// N come with the candidate (one evaluation per trial point).
+  NewtonSystem primalSystem(const Candidate<S>& c) const {
+    const S mu = c.gradient.dot(y_ - c.point) / c.gradient.squaredNorm();
+    return {y_ - c.point - mu * c.gradient, Eigen::Matrix<S, 3, 3>::Identity() + mu * c.hessian,
+            S(1)};
+  }
+
+  /// Dual, at a normal n with h's evaluation e there (border n): the surface point is ∇h(n),
+  /// d = n·(Q − ∇h(n)), residual Q − ∇h(n) − d·n, matrix ∇²h + d·I.
+  NewtonSystem dualSystem(const Vector3<S>& n, const NestedNormEval<S>& e) const {
+    const S d = n.dot(y_ - e.gradient);
+    return {y_ - e.gradient - d * n, e.hessian + d * Eigen::Matrix<S, 3, 3>::Identity(),
+            std::abs(d)};
   }
 
   /// The Newton matrix restricted to the tangent plane (normal n) must be positive definite
@@ -399,21 +440,20 @@ class ExactSolver {
     Progress progress(c.error, iterations_, inside_);
     while (c.error > q_.tolerance && iterations_ < limit_ && progress.keeps(c.error, iterations_)) {
       ++iterations_;
-      // ∇G and ∇²G at c.point come with the candidate (one evaluation per trial point).
-      const S mu = c.gradient.dot(y_ - c.point) / c.gradient.squaredNorm();
-      // Residual of Q − N = μ∇G; G(N) = 1 holds (N is re-projected every step).
-      const Vector3<S> residual = y_ - c.point - mu * c.gradient;
-      const Eigen::Matrix<S, 3, 3> raw = Eigen::Matrix<S, 3, 3>::Identity() + mu * c.hessian;
+      const NewtonSystem system = primalSystem(c);
       bool full_step_first = false;
       Vector3<S> convexified_step;
-      const bool convexify =
-          convexifiedStep(raw, c.normal, residual, S(1), &convexified_step, &full_step_first);
+      const bool convexify = convexifiedStep(system.matrix, c.normal, system.residual, system.scale,
+                                             &convexified_step, &full_step_first);
       Vector3<S> step;
       if (!convexify || full_step_first) {
-        if (solveBordered(raw, c.gradient, residual, S(0), &step) && tryStep(&c, step)) continue;
+        if (solveBordered(system.matrix, c.gradient, system.residual, S(0), &step) &&
+            tryStep(&c, step, true)) {
+          continue;
+        }
         if (!convexify) break;
       }
-      if (!convexified_step.allFinite() || !tryStep(&c, convexified_step)) break;
+      if (!convexified_step.allFinite() || !tryStep(&c, convexified_step, false)) break;
     }
     return c;
   }
@@ -427,28 +467,45 @@ class ExactSolver {
     Progress progress(c.error, iterations_, inside_);
     while (c.error > q_.tolerance && iterations_ < limit_ && progress.keeps(c.error, iterations_)) {
       ++iterations_;
-      const Vector3<S> point = e.gradient;
-      const S d = n.dot(y_ - point);
-      const Vector3<S> residual = y_ - point - d * n;
-      const Eigen::Matrix<S, 3, 3> raw = e.hessian + d * Eigen::Matrix<S, 3, 3>::Identity();
+      const NewtonSystem system = dualSystem(n, e);
       bool full_step_first = false;
       Vector3<S> convexified_step;
-      const bool convexify =
-          convexifiedStep(raw, n, residual, std::abs(d), &convexified_step, &full_step_first);
-      // A step with halving; true if a trial reduced the error.
-      auto try_dual_step = [&](Vector3<S> step) {
+      const bool convexify = convexifiedStep(system.matrix, n, system.residual, system.scale,
+                                             &convexified_step, &full_step_first);
+      auto accept = [&](const Vector3<S>& trial_n, const NestedNormEval<S>& trial, S error) {
+        c.point = trial.gradient;
+        c.normal = trial_n;
+        c.error = error;
+        n = trial_n;
+        e = trial;
+        moved = true;
+      };
+      // A step with halving; true if a trial reduced the error. A full Newton step (`corrected`)
+      // that fails gets its second-order correction (exact_rules::kStepTrials)
+      // before it is halved.
+      auto try_dual_step = [&](Vector3<S> step, bool corrected) {
         for (int trial_step = 0; trial_step < rules::kStepTrials; ++trial_step) {
           const Vector3<S> trial_n = stayInOctant(n, Vector3<S>(n + step)).normalized();
           const NestedNormEval<S> trial = dual_.evaluate(trial_n, true);
           const S error = errorAt(trial.gradient, trial_n);
           if (error < c.error) {
-            c.point = trial.gradient;
-            c.normal = trial_n;
-            c.error = error;
-            n = trial_n;
-            e = trial;
-            moved = true;
+            accept(trial_n, trial, error);
             return true;
+          }
+          if (trial_step == 0 && corrected && iterations_ < limit_ && std::isfinite(error)) {
+            const NewtonSystem at_trial = dualSystem(trial_n, trial);
+            Vector3<S> step_t;
+            if (solveBordered(at_trial.matrix, trial_n, at_trial.residual, S(0), &step_t)) {
+              const Vector3<S> corrected_n =
+                  stayInOctant(trial_n, Vector3<S>(trial_n + step_t)).normalized();
+              const NestedNormEval<S> second = dual_.evaluate(corrected_n, true);
+              const S corrected_error = errorAt(second.gradient, corrected_n);
+              if (corrected_error < c.error) {
+                ++iterations_;
+                accept(corrected_n, second, corrected_error);
+                return true;
+              }
+            }
           }
           step *= S(0.5);
         }
@@ -456,10 +513,13 @@ class ExactSolver {
       };
       Vector3<S> step;
       if (!convexify || full_step_first) {
-        if (solveBordered(raw, n, residual, S(0), &step) && try_dual_step(step)) continue;
+        if (solveBordered(system.matrix, n, system.residual, S(0), &step) &&
+            try_dual_step(step, true)) {
+          continue;
+        }
         if (!convexify) break;
       }
-      if (!convexified_step.allFinite() || !try_dual_step(convexified_step)) break;
+      if (!convexified_step.allFinite() || !try_dual_step(convexified_step, false)) break;
     }
     // Back to the primal's view of the final point (its own normal, gradient and Hessian), so
     // the error reported and any primal iterations that follow are the primal's.
@@ -470,8 +530,9 @@ class ExactSolver {
   }
 
   /// Applies a primal step (re-projected radially onto the surface) with halving; false if no
-  /// trial reduced the error.
-  bool tryStep(Candidate<S>* c, Vector3<S> step) {
+  /// trial reduced the error. A full Newton step (`corrected`) that fails gets its second-order
+  /// correction (exact_rules::kStepTrials) before it is halved.
+  bool tryStep(Candidate<S>* c, Vector3<S> step, bool corrected) {
     for (int trial_step = 0; trial_step < rules::kStepTrials; ++trial_step) {
       const Vector3<S> p = stayInOctant(c->point, Vector3<S>(c->point + step));
       if (p.allFinite() && p.squaredNorm() > S(0)) {
@@ -479,6 +540,21 @@ class ExactSolver {
         if (trial.error < c->error) {
           *c = trial;
           return true;
+        }
+        if (trial_step == 0 && corrected && iterations_ < limit_ && std::isfinite(trial.error)) {
+          const NewtonSystem at_trial = primalSystem(trial);
+          Vector3<S> step_t;
+          if (solveBordered(at_trial.matrix, trial.gradient, at_trial.residual, S(0), &step_t)) {
+            const Vector3<S> q = stayInOctant(trial.point, Vector3<S>(trial.point + step_t));
+            if (q.allFinite() && q.squaredNorm() > S(0)) {
+              const Candidate<S> second = candidateOnRay(q);
+              if (second.error < c->error) {
+                ++iterations_;
+                *c = second;
+                return true;
+              }
+            }
+          }
         }
       }
       step *= S(0.5);
@@ -526,6 +602,9 @@ class ExactSolver {
   S sign_ = S(1);
   int iterations_ = 0;
   int limit_ = 0;  // iteration count at which the current start stops
+  // Inside: the surface point nearest to Q among the starts' answers (noteSurfacePoint).
+  Vector3<S> nearest_point_ = Vector3<S>::Zero();
+  S nearest_squared_ = std::numeric_limits<S>::infinity();
 };
 
 }  // namespace

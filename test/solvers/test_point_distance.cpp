@@ -424,6 +424,54 @@ TYPED_TEST(PointDistanceTest, NearlyRoundShapesConvergeJustOffTheirAxis) {
   }
 }
 
+// Shapes with a nearly round cross-section and ε2 ≠ 1, queried near their centre
+// (docs/hardening.md, finding 13). The nearest points lie near a ring (at ±45° latitude where
+// ε2 > 1, on the equator where ε2 < 1), and Q's small offset from the centre makes the valley
+// along the ring shallow: a full Newton step along it leaves the curved floor and is refused,
+// and starts stuck on the equator's saddle had a smaller error than those creeping along the
+// ring. Some directions put Q just off the equator's mirror plane (by 2 % of its depth). Each
+// query converges; its point is on the surface (so never nearer than the true distance) and
+// never farther than the reference's, whose grid search stops short of such a flat valley's
+// lowest point by up to 2e-8 × size (the previous test).
+TYPED_TEST(PointDistanceTest, NearlyRoundShapesConvergeNearTheirCentre) {
+  using S = TypeParam;
+  const auto options = DistanceOptions<S>::of(DistanceMethod::kExact);
+  const std::array<double, 2> exponents[] = {{1.0000098134957103, 1.0632727529482509},  // fuzzer's
+                                             {1.0, 1.1},
+                                             {1 - 9.8e-6, 0.94},
+                                             {1.05, 0.95},
+                                             {0.95, 1.05}};
+  const std::array<double, 3> directions[] = {{-0.5, -0.6057, -0.6057},  // the fuzzer's
+                                              {-0.909, 0.417, 0.019},
+                                              {0.973, 0.230, -0.020},
+                                              {0.279, 0.954, 0.114},
+                                              {-0.227, -0.968, 0.107}};
+  for (const auto& e : exponents) {
+    for (double radius : {1.0, 4.0817931715497295e+32}) {
+      if (std::is_same<S, float>::value && radius > 1e30) continue;  // beyond float's range
+      const Superellipsoid<S> shape = makeShape<S>({radius, radius, radius}, e[0], e[1]);
+      SCOPED_TRACE(test::describe(shape));
+      const double target = test::exactTarget<S>(double(shape.eps1()), double(shape.eps2()));
+      const test::ReferenceDistance reference({radius, radius, radius}, shape.eps1(), shape.eps2());
+      for (const auto& dir : directions) {
+        for (double depth : {5.9e-6, 1e-4, 1e-2}) {
+          const double scale =
+              depth * radius / std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+          const Vector3<S> x(S(scale * dir[0]), S(scale * dir[1]), S(scale * dir[2]));
+          SCOPED_TRACE("Q = " + std::to_string(x[0]) + ", " + std::to_string(x[1]) + ", " +
+                       std::to_string(x[2]));
+          const auto r = pointDistance(shape, x, options);
+          expectInvariants(shape, x, r, options.max_iterations, target);
+          EXPECT_TRUE(r.converged) << "error " << r.error << ", " << r.iterations << " iterations";
+          const auto truth = reference.query({x[0], x[1], x[2]});
+          EXPECT_LE(std::abs(double(r.distance)),
+                    std::abs(double(truth.distance)) + target * shape.size());
+        }
+      }
+    }
+  }
+}
+
 // Outside answers on a crease: a flat disc whose rim is a ridge (ε1 = 1.9 across it) and a
 // flat box-like pancake, queried beyond the rim. The nearest point is on the ridge, where the
 // surface formula's normal is one of many normals (the normal cone), and Eq. 7 with it does not
