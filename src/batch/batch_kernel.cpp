@@ -5,13 +5,12 @@
 //
 // Every formula mirrors solvers/exact_solver.cpp and shape/nested_norm.h, lane by lane; masks
 // stand in for its branches; the rules both share (tolerance floor, budgets, halvings,
-// thresholds) are read from solvers/exact_rules.h. Two differences, both exact in arithmetic:
-//  - the bordered Newton system [A, b; bᵀ, 0]·[δ; λ] = [r; 0] is solved in the tangent plane:
-//    δ ⊥ b, so with an orthonormal tangent basis T = (t1, t2) of b, (TᵀAT)·c = Tᵀr, δ = T·c.
-//    TᵀAT is the 2×2 block that convexification already inspects, so one small solve replaces
-//    a 4×4 LU;
-//  - the dual iteration keeps the dual's normal for its answer instead of re-deriving the
-//    primal's at the end (they agree to rounding at a converged point).
+// thresholds) are read from solvers/exact_rules.h. Like the scalar solver it solves the
+// bordered Newton system in the tangent plane (ExactSolver::tangentSteps). Differences: the dual
+// iteration keeps the dual's normal for its answer instead of re-deriving the primal's at the
+// end (they agree to rounding at a converged point), and a refused full step is halved without
+// the scalar solver's second-order correction (exact_rules::kStepTrials; the lanes that do not
+// converge go to the scalar solver).
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "batch/batch_kernel.cpp"

@@ -34,7 +34,7 @@
 //
 // Convergence is judged by the paper's error (Eq. 7) so all methods share one yardstick.
 
-#include <Eigen/LU>
+#include <Eigen/Core>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -51,11 +51,6 @@ namespace detail {
 namespace {
 
 namespace rules = exact_rules;
-
-template <typename S>
-using Matrix4 = Eigen::Matrix<S, 4, 4>;
-template <typename S>
-using Vector4 = Eigen::Matrix<S, 4, 1>;
 
 /// A candidate answer in the first octant.
 template <typename S>
@@ -339,8 +334,8 @@ class ExactSolver {
     return out;
   }
 
-  /// One Newton system [matrix, border; borderᵀ, 0]·[δ; δλ] = [residual; 0]; `scale` is the
-  /// length that sets convexification's thresholds.
+  /// One Newton system [matrix, border; borderᵀ, 0]·[δ; δλ] = [residual; 0], the border along
+  /// the iterate's normal; `scale` is the length that sets convexification's thresholds.
   struct NewtonSystem {
     Vector3<S> residual;
     Eigen::Matrix<S, 3, 3> matrix;
@@ -364,54 +359,47 @@ class ExactSolver {
             std::abs(d)};
   }
 
-  /// The Newton matrix restricted to the tangent plane (normal n) must be positive definite
-  /// for the step to head for a minimum of the distance. Outside it always is (the shape is
-  /// convex); inside it is not beyond a focal point (|d| > a radius of curvature), where the
-  /// iterate sits near a saddle such as the tip of a creased shape (ε > 1). There (a tangent
-  /// eigenvalue below 1e-4 × `scale`) that eigenvalue alone is replaced by 10 % of `scale`, along
-  /// its own eigenvector: a damped step uphill on the Lagrangian's curvature in that direction,
-  /// not toward the saddle, and the plain Newton step in the other direction, whose curvature
-  /// is untouched (shifting both would make the iterate creep along a mirror plane whose
-  /// crossing direction is strongly negative). The step is then solved in the tangent basis
-  /// and comes back in `step` (not finite if singular); false means no eigenvalue needed it (plain
-  /// Newton applies). Near a focal ring (Q close to the axis of a round cross-section) or a focal
-  /// point (Q near the centre of a near-sphere) the smallest eigenvalue is small but positive and
-  /// the full Newton step is the one that converges (the replaced one creeps, by about
-  /// eigenvalue/(10 % of scale) per iteration), so a positive one comes back in
-  /// `full_step_first`: the caller tries the unmodified matrix first.
-  static bool convexifiedStep(const Eigen::Matrix<S, 3, 3>& a, const Vector3<S>& n,
-                              const Vector3<S>& r, S scale, Vector3<S>* step,
-                              bool* full_step_first) {
-    // An orthonormal tangent basis t1, t2 of n, and the 2×2 tangent block.
+  /// The Newton steps at one iterate, solved in the tangent plane of the normal n: the bordered
+  /// system [A, b; bᵀ, 0]·[δ; δλ] = [r; 0] (b ∥ n) forces δ ⊥ n, so with an orthonormal tangent
+  /// basis T = (t1, t2), (TᵀAT)·c = Tᵀr and δ = T·c — a 2×2 solve on the block convexification
+  /// inspects anyway, in place of a 4×4 LU (the SIMD kernel does the same).
+  struct TangentSteps {
+    Vector3<S> plain;        // Newton's step (not finite if the block is singular)
+    Vector3<S> convexified;  // with the convexified block, if `convexify`
+    bool convexify;          // an eigenvalue needed replacing (below)
+    bool full_step_first;    // ... and the smallest was positive: try `plain` first
+  };
+
+  /// The tangent block must be positive definite for the step to head for a minimum of the
+  /// distance. Outside it always is (the shape is convex); inside it is not beyond a focal point
+  /// (|d| > a radius of curvature), where the iterate sits near a saddle such as the tip of a
+  /// creased shape (ε > 1). There (a tangent eigenvalue below 1e-4 × `scale`) that eigenvalue
+  /// alone is replaced by 10 % of `scale`, along its own eigenvector: a damped step uphill on
+  /// the Lagrangian's curvature in that direction, not toward the saddle, and the plain Newton
+  /// step in the other direction, whose curvature is untouched (shifting both would make the
+  /// iterate creep along a mirror plane whose crossing direction is strongly negative). Near a
+  /// focal ring (Q close to the axis of a round cross-section) or a focal point (Q near the
+  /// centre of a near-sphere) the smallest eigenvalue is small but positive and the full Newton
+  /// step is the one that converges (the replaced one creeps, by about eigenvalue/(10 % of
+  /// scale) per iteration), so a positive one comes back in `full_step_first`: the caller tries
+  /// the plain step first.
+  static TangentSteps tangentSteps(const NewtonSystem& system, const Vector3<S>& n) {
     const Vector3<S> helper =
         std::abs(n[0]) < S(rules::kTangentHelperSwitch) ? Vector3<S>::UnitX() : Vector3<S>::UnitY();
     const Vector3<S> t1 = n.cross(helper).normalized();
     const Vector3<S> t2 = n.cross(t1);
+    const Eigen::Matrix<S, 3, 3>& a = system.matrix;
     const S b11 = t1.dot(a * t1), b22 = t2.dot(a * t2), b12 = t1.dot(a * t2);
-    const rules::TangentBlock<S> m = rules::convexifiedTangentBlock(b11, b12, b22, scale);
-    *full_step_first = m.full_step_first;
-    if (!m.modified) return false;
-    // δ = T·M⁻¹·Tᵀr with T = (t1, t2): the bordered system's step with M as its tangent block.
-    const S c1 = t1.dot(r), c2 = t2.dot(r);
-    const S det = m.m11 * m.m22 - m.m12 * m.m12;
-    *step = ((m.m22 * c1 - m.m12 * c2) / det) * t1 + ((m.m11 * c2 - m.m12 * c1) / det) * t2;
-    return true;
-  }
-
-  /// Solves the bordered system [A, b; bᵀ, 0]·[δ; δλ] = [r; s]; false if singular.
-  static bool solveBordered(const Eigen::Matrix<S, 3, 3>& a, const Vector3<S>& b,
-                            const Vector3<S>& r, S s, Vector3<S>* delta) {
-    Matrix4<S> m;
-    m.template topLeftCorner<3, 3>() = a;
-    m.template topRightCorner<3, 1>() = b;
-    m.template bottomLeftCorner<1, 3>() = b.transpose();
-    m(3, 3) = S(0);
-    Vector4<S> rhs;
-    rhs << r, s;
-    const Vector4<S> x = m.partialPivLu().solve(rhs);
-    if (!x.allFinite()) return false;
-    *delta = x.template head<3>();
-    return true;
+    const S c1 = t1.dot(system.residual), c2 = t2.dot(system.residual);
+    // δ = T·M⁻¹·Tᵀr for a symmetric 2×2 block M.
+    auto solve = [&](S m11, S m12, S m22) {
+      const S det = m11 * m22 - m12 * m12;
+      return Vector3<S>(((m22 * c1 - m12 * c2) / det) * t1 + ((m11 * c2 - m12 * c1) / det) * t2);
+    };
+    const rules::TangentBlock<S> m = rules::convexifiedTangentBlock(b11, b12, b22, system.scale);
+    TangentSteps steps{solve(b11, b12, b22), Vector3<S>::Zero(), m.modified, m.full_step_first};
+    if (m.modified) steps.convexified = solve(m.m11, m.m12, m.m22);
+    return steps;
   }
 
   /// Stall detection of one Newton run inside the shape (exact_rules::kStallWindow): false once
@@ -440,20 +428,12 @@ class ExactSolver {
     Progress progress(c.error, iterations_, inside_);
     while (c.error > q_.tolerance && iterations_ < limit_ && progress.keeps(c.error, iterations_)) {
       ++iterations_;
-      const NewtonSystem system = primalSystem(c);
-      bool full_step_first = false;
-      Vector3<S> convexified_step;
-      const bool convexify = convexifiedStep(system.matrix, c.normal, system.residual, system.scale,
-                                             &convexified_step, &full_step_first);
-      Vector3<S> step;
-      if (!convexify || full_step_first) {
-        if (solveBordered(system.matrix, c.gradient, system.residual, S(0), &step) &&
-            tryStep(&c, step, true)) {
-          continue;
-        }
-        if (!convexify) break;
+      const TangentSteps steps = tangentSteps(primalSystem(c), c.normal);
+      if (!steps.convexify || steps.full_step_first) {
+        if (steps.plain.allFinite() && tryStep(&c, steps.plain, true)) continue;
+        if (!steps.convexify) break;
       }
-      if (!convexified_step.allFinite() || !tryStep(&c, convexified_step, false)) break;
+      if (!steps.convexified.allFinite() || !tryStep(&c, steps.convexified, false)) break;
     }
     return c;
   }
@@ -467,11 +447,7 @@ class ExactSolver {
     Progress progress(c.error, iterations_, inside_);
     while (c.error > q_.tolerance && iterations_ < limit_ && progress.keeps(c.error, iterations_)) {
       ++iterations_;
-      const NewtonSystem system = dualSystem(n, e);
-      bool full_step_first = false;
-      Vector3<S> convexified_step;
-      const bool convexify = convexifiedStep(system.matrix, n, system.residual, system.scale,
-                                             &convexified_step, &full_step_first);
+      const TangentSteps steps = tangentSteps(dualSystem(n, e), n);
       auto accept = [&](const Vector3<S>& trial_n, const NestedNormEval<S>& trial, S error) {
         c.point = trial.gradient;
         c.normal = trial_n;
@@ -493,9 +469,8 @@ class ExactSolver {
             return true;
           }
           if (trial_step == 0 && corrected && iterations_ < limit_ && std::isfinite(error)) {
-            const NewtonSystem at_trial = dualSystem(trial_n, trial);
-            Vector3<S> step_t;
-            if (solveBordered(at_trial.matrix, trial_n, at_trial.residual, S(0), &step_t)) {
+            const Vector3<S> step_t = tangentSteps(dualSystem(trial_n, trial), trial_n).plain;
+            if (step_t.allFinite()) {
               const Vector3<S> corrected_n =
                   stayInOctant(trial_n, Vector3<S>(trial_n + step_t)).normalized();
               const NestedNormEval<S> second = dual_.evaluate(corrected_n, true);
@@ -511,15 +486,11 @@ class ExactSolver {
         }
         return false;
       };
-      Vector3<S> step;
-      if (!convexify || full_step_first) {
-        if (solveBordered(system.matrix, n, system.residual, S(0), &step) &&
-            try_dual_step(step, true)) {
-          continue;
-        }
-        if (!convexify) break;
+      if (!steps.convexify || steps.full_step_first) {
+        if (steps.plain.allFinite() && try_dual_step(steps.plain, true)) continue;
+        if (!steps.convexify) break;
       }
-      if (!convexified_step.allFinite() || !try_dual_step(convexified_step, false)) break;
+      if (!steps.convexified.allFinite() || !try_dual_step(steps.convexified, false)) break;
     }
     // Back to the primal's view of the final point (its own normal, gradient and Hessian), so
     // the error reported and any primal iterations that follow are the primal's.
@@ -542,9 +513,8 @@ class ExactSolver {
           return true;
         }
         if (trial_step == 0 && corrected && iterations_ < limit_ && std::isfinite(trial.error)) {
-          const NewtonSystem at_trial = primalSystem(trial);
-          Vector3<S> step_t;
-          if (solveBordered(at_trial.matrix, trial.gradient, at_trial.residual, S(0), &step_t)) {
+          const Vector3<S> step_t = tangentSteps(primalSystem(trial), trial.normal).plain;
+          if (step_t.allFinite()) {
             const Vector3<S> q = stayInOctant(trial.point, Vector3<S>(trial.point + step_t));
             if (q.allFinite() && q.squaredNorm() > S(0)) {
               const Candidate<S> second = candidateOnRay(q);
