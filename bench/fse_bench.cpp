@@ -96,12 +96,18 @@ int main(int argc, char** argv) {
                  "Instead: the superellipsoid against every FCL shape, this many random pairs per "
                  "kind, against FCL's libccd and Bullet's GJK/EPA (pairs.csv in --out)")
       ->check(CLI::Range(6, 1000000));
+  std::vector<std::string> pair_kinds;
+  app.add_option("--pair-kinds", pair_kinds,
+                 "With --pairs: only these partner kinds (superellipsoid, ellipsoid, sphere, box, "
+                 "capsule, cylinder, cone, convex, triangle, halfspace, plane)")
+      ->check(CLI::IsMember({"superellipsoid", "ellipsoid", "sphere", "box", "capsule", "cylinder",
+                             "cone", "convex", "triangle", "halfspace", "plane"}));
   CLI11_PARSE(app, argc, argv);
 
   if (culling > 0) return runCulling(culling);
   if (pairs > 0) {
     if (!out_dir.empty()) std::filesystem::create_directories(out_dir);
-    return runPairs(pairs, out_dir.empty() ? std::string() : out_dir + "/pairs.csv");
+    return runPairs(pairs, out_dir.empty() ? std::string() : out_dir + "/pairs.csv", pair_kinds);
   }
   if (aspect_sweep) return runAspectSweep(quick ? 50 : 200);
 

@@ -2,6 +2,7 @@
 #define FCL_SUPERELLIPSOID_BENCH_PAIRS_H
 
 #include <string>
+#include <vector>
 
 namespace fcl_superellipsoid {
 namespace bench {
@@ -9,8 +10,9 @@ namespace bench {
 /// The superellipsoid against every FCL shape and another superellipsoid: our pair solvers
 /// (through the front end), FCL's GJKSolver_libccd and Bullet's btGjkEpaSolver2 with the exact
 /// support function, on the same pairs; time per query and error per separation bucket. Prints
-/// the table; writes every bucket's row to `csv` unless it is empty.
-int runPairs(int per_kind, const std::string& csv);
+/// the table; writes every bucket's row to `csv` unless it is empty. `only`: the kinds to run
+/// (all if empty); the others' pairs are still drawn, so each kind's pairs stay the same.
+int runPairs(int per_kind, const std::string& csv, const std::vector<std::string>& only);
 
 }  // namespace bench
 }  // namespace fcl_superellipsoid

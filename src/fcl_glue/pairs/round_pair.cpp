@@ -63,17 +63,26 @@ std::optional<Round<S>> roundOf(const fcl::CollisionGeometry<S>* other,
   return b;
 }
 
-/// Widens a bracket around x0 until the derivative goes from negative to positive (up to a
-/// half turn either side), then finds the stationary point in it.
+/// Widens a bracket around x0 until the derivative goes from negative to positive (each end
+/// doubling its distance from x0, up to a half turn), then finds the stationary point in it. An
+/// end that is on the wrong side becomes the other end (the minimum lies beyond it).
 template <typename S, typename Payload, typename At>
 std::optional<Payload> minimumAround(At at, S x0) {
-  for (S w = S(0.02); w <= S(3.2); w *= S(2)) {
-    const auto lo = at(x0 - w), hi = at(x0 + w);
-    if (lo.derivative < S(0) && hi.derivative > S(0)) {
-      return stationaryPoint<S>(at, lo, hi).payload;
+  constexpr S kFirst = S(0.02), kLast = S(3.2);
+  S w_lo = kFirst, w_hi = kFirst;
+  auto lo = at(x0 - w_lo), hi = at(x0 + w_hi);
+  while (!(lo.derivative < S(0) && hi.derivative > S(0))) {
+    if (!(lo.derivative < S(0))) {
+      if (lo.derivative > S(0)) hi = lo;
+      if ((w_lo *= S(2)) > kLast) return std::nullopt;
+      lo = at(x0 - w_lo);
+    } else {
+      if (hi.derivative < S(0)) lo = hi;
+      if ((w_hi *= S(2)) > kLast) return std::nullopt;
+      hi = at(x0 + w_hi);
     }
   }
-  return std::nullopt;
+  return stationaryPoint<S>(at, lo, hi).payload;
 }
 
 /// The exact answer for separated shapes, if a candidate among the features within `margin` of
@@ -90,9 +99,9 @@ std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Round<S>& b,
   const S theta0 = std::atan2(toward.dot(b.e2), toward.dot(b.e1));
   auto support = [&b](const Vector3<S>& u) { return b.support(u); };
   Candidates<S, decltype(support)> candidates(pair, support, extent);
+  WarmPointQueries<S> query(*pair.shape, *pair.X_WS);  // the rims' samples are close together
   auto pointHit = [&](const Vector3<S>& p) {
-    const PointDistanceResult<S> r =
-        pointDistance(*pair.shape, *pair.X_WS, p, pair.shape->queryOptions());
+    const PointDistanceResult<S> r = query(p);
     return PairHit<S>{r.distance, p, r.nearest_point, r.normal, -1};
   };
   // The flat ends: the cylinder's two discs, the cone's base.

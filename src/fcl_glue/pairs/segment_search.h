@@ -11,11 +11,12 @@
 // distance), for the capsule's axis and a polytope's edges. The signed distance to a convex set
 // is convex, so along p(t) = p0 + t·(p1 − p0) it has one minimum; its derivative is
 // n(t)·(p1 − p0), with n(t) the surface normal at p(t)'s nearest point (exact from the point
-// solver).
+// solver), each point query warm-started from the previous one (WarmPointQueries).
 
 #include <limits>
 
 #include "fcl_superellipsoid/point_distance.h"
+#include "solvers/solvers.h"
 
 namespace fcl_superellipsoid {
 namespace detail {
@@ -73,14 +74,40 @@ struct SegmentMinimum {
   PointDistanceResult<S> at;  // the point query at p(t), world
 };
 
+/// Point queries at a sequence of nearby world points (a search along a segment or a rim), each
+/// warm-started from the previous one's nearest point: outside, a converged warm start is the
+/// answer (solvers.h), and it converges in a few iterations where the points are close.
+template <typename S>
+class WarmPointQueries {
+ public:
+  WarmPointQueries(const Superellipsoid<S>& shape, const fcl::Transform3<S>& X_WS)
+      : shape_(shape), X_WS_(X_WS), X_SW_(X_WS.inverse(Eigen::Isometry)) {}
+
+  /// pointDistance(shape, X_WS, p_W, shape.queryOptions()), in world coordinates.
+  PointDistanceResult<S> operator()(const Vector3<S>& p_W) {
+    PointDistanceResult<S> r =
+        pointDistanceWithHint(shape_, Vector3<S>(X_SW_ * p_W), hint_S_, shape_.queryOptions());
+    hint_S_ = r.nearest_point;
+    r.nearest_point = X_WS_ * r.nearest_point;
+    r.normal = X_WS_.linear() * r.normal;
+    return r;
+  }
+
+ private:
+  const Superellipsoid<S>& shape_;
+  const fcl::Transform3<S>& X_WS_;
+  const fcl::Transform3<S> X_SW_;
+  Vector3<S> hint_S_ = Vector3<S>::Constant(std::numeric_limits<S>::quiet_NaN());  // none yet
+};
+
 template <typename S>
 SegmentMinimum<S> nearestOnSegment(const Superellipsoid<S>& shape, const fcl::Transform3<S>& X_WS,
                                    const Vector3<S>& p0, const Vector3<S>& p1) {
   const Vector3<S> e = p1 - p0;
-  const DistanceOptions<S>& options = shape.queryOptions();
+  WarmPointQueries<S> query(shape, X_WS);
   auto at = [&](S t) {
     const Vector3<S> p = p0 + t * e;
-    const PointDistanceResult<S> r = pointDistance(shape, X_WS, p, options);
+    const PointDistanceResult<S> r = query(p);
     return Sample<S, SegmentMinimum<S>>{t, r.normal.dot(e), {t, p, r}};
   };
   const auto lo = at(S(0)), hi = at(S(1));
