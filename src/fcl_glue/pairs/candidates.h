@@ -2,7 +2,8 @@
 #define FCL_SUPERELLIPSOID_SRC_FCL_GLUE_PAIRS_CANDIDATES_H
 
 // Internal: how the exact pairs with flat or round features (polytope_pair, round_pair, and the
-// capsule's hand-over) certify their separated answers and fall back to libccd.
+// capsule's hand-over) start (our GJK, else libccd), certify their separated answers, and fall
+// back to libccd.
 //
 // A candidate is a pair of real surface points, on_shape and on_other: its distance is an upper
 // bound of the shapes' distance. Along its direction v = (on_other − on_shape)/|…| the support
@@ -15,6 +16,7 @@
 #include <limits>
 #include <optional>
 
+#include "fcl_glue/pairs/gjk.h"
 #include "fcl_glue/pairs/libccd_pair.h"
 #include "fcl_glue/pairs/pair.h"
 
@@ -68,13 +70,37 @@ class Candidates {
   bool certified_ = false;
 };
 
-/// The pair's answer from libccd's start (libccd_pair.h): `separated(start)` (an
-/// std::optional<PairHit<S>>, certified or nothing) where libccd finds the shapes apart or within
-/// its own error of touching (about 1e-5 × size; the exact answer then decides the sign), else,
-/// or if nothing is certified, `overlap(start)` (a PairHit: depth_candidates.h).
-template <typename S, typename Separated, typename Overlap>
-std::optional<PairHit<S>> exactPair(const Pair<S>& pair, S other_size, Separated separated,
-                                    Overlap overlap) {
+/// GJK's start (gjk.h): the relative gap between its bounds at which it stops, and its
+/// iteration limit. Its answer only has to pick out the features near the contact, which the
+/// separated search then solves exactly and certifies.
+constexpr double kGjkRelativeGap = 1e-4;
+constexpr int kGjkIterations = 64;
+
+/// The pair's answer. Where our GJK (gjk.h, with the superellipsoid's exact support points and
+/// `other_support_point(u)`, the other geometry's point farthest along u) finds the shapes apart,
+/// `separated(start)` (an std::optional<PairHit<S>>, certified or nothing) from its witnesses.
+/// Otherwise, or if nothing is certified, libccd's start (libccd_pair.h): `separated(start)`
+/// where libccd finds the shapes apart or within its own error of touching (about 1e-5 × size;
+/// the exact answer then decides the sign), else, or if nothing is certified, `overlap(start)`
+/// (a PairHit: depth_candidates.h).
+template <typename S, typename OtherSupportPoint, typename Separated, typename Overlap>
+std::optional<PairHit<S>> exactPair(const Pair<S>& pair, S other_size,
+                                    const OtherSupportPoint& other_support_point,
+                                    Separated separated, Overlap overlap) {
+  auto shape_support_point = [&pair](const Vector3<S>& u) { return shapeSupport(pair, u); };
+  const std::optional<GjkSeparation<S>> apart =
+      gjkSeparation<S>(shape_support_point, other_support_point,
+                       Vector3<S>(pair.X_WO->translation() - pair.X_WS->translation()),
+                       S(kGjkRelativeGap), kGjkIterations);
+  if (apart) {
+    const Vector3<S> normal = (apart->on_b - apart->on_a).normalized();
+    if (normal.allFinite()) {
+      if (const std::optional<PairHit<S>> answer =
+              separated(PairHit<S>{apart->distance, apart->on_b, apart->on_a, normal, -1})) {
+        return answer;
+      }
+    }
+  }
   const std::optional<PairHit<S>> start = libccdHit(pair);
   if (!start) return std::nullopt;
   if (start->distance > -S(1e-3) * std::max(pair.shape->size(), other_size)) {

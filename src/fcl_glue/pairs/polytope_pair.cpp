@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <set>
 #include <utility>
 #include <vector>
 
@@ -35,6 +34,14 @@ struct Polytope {
     for (const Vector3<S>& w : vertices) h = std::max(h, u.dot(w));
     return h;
   }
+  /// A vertex where that maximum is reached (the first).
+  Vector3<S> supportPoint(const Vector3<S>& u) const {
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < vertices.size(); ++i) {
+      if (u.dot(vertices[i]) > u.dot(vertices[best])) best = i;
+    }
+    return vertices[best];
+  }
 };
 
 /// Newell's normal of a loop (not normalised): its orientation follows the loop's.
@@ -58,14 +65,14 @@ void finish(Polytope<S>& p) {
   for (const Vector3<S>& v : p.vertices) centroid += v;
   centroid /= S(p.vertices.size());
   for (const Vector3<S>& v : p.vertices) p.extent = std::max(p.extent, (v - centroid).norm());
-  std::set<std::pair<int, int>> edges;
+  std::vector<std::pair<int, int>> edges;    // each face's, then sorted and made unique
   std::vector<std::vector<int>> back_faces;  // the other side of a flat polytope's faces
   std::vector<Vector3<S>> back_normals;
   std::vector<std::vector<int>> faces;
   for (const std::vector<int>& loop : p.faces) {
     for (std::size_t k = 0; k < loop.size(); ++k) {
       const int i = loop[k], j = loop[(k + 1) % loop.size()];
-      edges.insert({std::min(i, j), std::max(i, j)});
+      edges.push_back({std::min(i, j), std::max(i, j)});
     }
     const Vector3<S> newell = loopNormal(p.vertices, loop);
     if (!(newell.norm() > S(0)) || !newell.allFinite()) continue;  // a degenerate face: edges only
@@ -83,7 +90,9 @@ void finish(Polytope<S>& p) {
   p.faces = std::move(faces);
   p.faces.insert(p.faces.end(), back_faces.begin(), back_faces.end());
   p.normals.insert(p.normals.end(), back_normals.begin(), back_normals.end());
-  p.edges.assign(edges.begin(), edges.end());
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  p.edges = std::move(edges);
 }
 
 template <typename S>
@@ -200,7 +209,7 @@ std::optional<PairHit<S>> polytopeHit(const Pair<S>& pair) {
   const std::optional<Polytope<S>> p = polytopeOf(pair.other, *pair.X_WO);
   if (!p) return std::nullopt;
   return exactPair(
-      pair, p->extent,
+      pair, p->extent, [&](const Vector3<S>& u) { return p->supportPoint(u); },
       [&](const PairHit<S>& start) { return exactSeparated(pair, *p, start.normal); },
       [&](const PairHit<S>& start) { return overlap(pair, *p, start); });
 }

@@ -30,6 +30,17 @@ struct Round {
     if (!cone) return u.dot(t) + radial + h * std::abs(uz);
     return u.dot(t) + std::max(h * uz, radial - h * uz);
   }
+  /// A point where h_B(u) is reached: on the rim (or the apex) toward u's radial part; the
+  /// centre of the disc where u is along the axis.
+  Vector3<S> supportPoint(const Vector3<S>& u) const {
+    const S uz = u.dot(z);
+    const Vector3<S> radial = u - uz * z;
+    const S length = radial.norm();
+    const Vector3<S> out = length > S(0) ? Vector3<S>(r * radial / length) : Vector3<S>::Zero();
+    if (!cone) return t + (uz >= S(0) ? h : -h) * z + out;
+    if (h * uz >= r * length - h * uz) return t + h * z;  // the apex
+    return t - h * z + out;
+  }
   Vector3<S> circle(S theta) const { return std::cos(theta) * e1 + std::sin(theta) * e2; }
   Vector3<S> circleTangent(S theta) const { return -std::sin(theta) * e1 + std::cos(theta) * e2; }
   /// The side's outward unit normal m(θ) (the cone's ∝ 2h·c(θ) + r·z) and its derivative.
@@ -193,7 +204,7 @@ std::optional<PairHit<S>> roundHit(const Pair<S>& pair) {
   if (!b) return std::nullopt;
   const S extent = std::hypot(b->r, b->h);
   return exactPair(
-      pair, extent,
+      pair, extent, [&](const Vector3<S>& u) { return b->supportPoint(u); },
       [&](const PairHit<S>& start) {
         // The features near libccd's witness; failing that (its witness can be off by more than
         // the margin, far away), every feature.
