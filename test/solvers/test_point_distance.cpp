@@ -44,6 +44,21 @@ void expectInvariants(const Superellipsoid<S>& shape, const Vector3<S>& x,
               tol * (size + x.norm()));
 }
 
+/// The query converges, keeps the contract, and is never farther than the long-double
+/// reference's answer (which is only an upper bound where a valley of nearest points is too flat
+/// for its grid search: it stops up to 2e-8 × size short there). Returns the answer.
+template <typename S>
+PointDistanceResult<S> expectConvergedNoFartherThanReference(
+    const Superellipsoid<S>& shape, const Vector3<S>& x, const DistanceOptions<S>& options,
+    double target, const test::ReferenceDistance& reference) {
+  const auto r = pointDistance(shape, x, options);
+  expectInvariants(shape, x, r, options.max_iterations, target);
+  EXPECT_TRUE(r.converged) << "error " << r.error << ", " << r.iterations << " iterations";
+  const auto truth = reference.query({x[0], x[1], x[2]});
+  EXPECT_LE(std::abs(double(r.distance)), std::abs(double(truth.distance)) + target * shape.size());
+  return r;
+}
+
 template <typename S>
 class PointDistanceTest : public ::testing::Test {};
 TYPED_TEST_SUITE(PointDistanceTest, test::Scalars);
@@ -400,18 +415,13 @@ TYPED_TEST(PointDistanceTest, NearlyRoundShapesConvergeJustOffTheirAxis) {
           x[k] = S(offset * std::sin(angle));
           SCOPED_TRACE("Q = " + std::to_string(x[0]) + ", " + std::to_string(x[1]) + ", " +
                        std::to_string(x[2]));
-          const auto r = pointDistance(shape, x, options);
-          expectInvariants(shape, x, r, options.max_iterations, target);
-          EXPECT_TRUE(r.converged) << "error " << r.error << ", " << r.iterations << " iterations";
           // The ring's valley is too flat for the reference's grid search to settle on its lowest
-          // point (it stops up to 2e-8 × size short), so the reference's point is an upper
-          // bound here: the answer is never farther. The lowest point is fixed by symmetry
-          // instead: it lies in Q's meridian half-plane about the axis. A point of the ring at
-          // an angle φ from it is farther by about |Q⊥|·|N⊥|·φ²/(2·|d|), so within the
+          // point, so the reference's point is an upper bound here. The lowest point is fixed by
+          // symmetry instead: it lies in Q's meridian half-plane about the axis. A point of the
+          // ring at an angle φ from it is farther by about |Q⊥|·|N⊥|·φ²/(2·|d|), so within the
           // tolerance φ may be up to √(2·|d|·tolerance / (|Q⊥|·|N⊥|)).
-          const auto truth = reference.query({x[0], x[1], x[2]});
-          EXPECT_LE(std::abs(double(r.distance)),
-                    std::abs(double(truth.distance)) + target * shape.size());
+          const auto r =
+              expectConvergedNoFartherThanReference(shape, x, options, target, reference);
           const double qj = x[j], qk = x[k], nj = r.nearest_point[j], nk = r.nearest_point[k];
           const double off_meridian = std::atan2(qj * nk - qk * nj, qj * nj + qk * nk);
           const double allowed = std::sqrt(2 * std::abs(double(r.distance)) * target *
@@ -460,12 +470,7 @@ TYPED_TEST(PointDistanceTest, NearlyRoundShapesConvergeNearTheirCentre) {
           const Vector3<S> x(S(scale * dir[0]), S(scale * dir[1]), S(scale * dir[2]));
           SCOPED_TRACE("Q = " + std::to_string(x[0]) + ", " + std::to_string(x[1]) + ", " +
                        std::to_string(x[2]));
-          const auto r = pointDistance(shape, x, options);
-          expectInvariants(shape, x, r, options.max_iterations, target);
-          EXPECT_TRUE(r.converged) << "error " << r.error << ", " << r.iterations << " iterations";
-          const auto truth = reference.query({x[0], x[1], x[2]});
-          EXPECT_LE(std::abs(double(r.distance)),
-                    std::abs(double(truth.distance)) + target * shape.size());
+          expectConvergedNoFartherThanReference(shape, x, options, target, reference);
         }
       }
     }

@@ -54,6 +54,31 @@ struct Simplex {
   }
 };
 
+/// Of several sub-simplices with their nearest points (weights over each), the one nearest the
+/// origin.
+template <typename S>
+class NearestOfSeveral {
+ public:
+  void offer(const Simplex<S>& sub, const S weights[4]) {
+    Vector3<S> v = Vector3<S>::Zero();
+    for (int i = 0; i < sub.size; ++i) v += weights[i] * sub.w[i];
+    if (!(v.squaredNorm() < best_distance_)) return;
+    best_distance_ = v.squaredNorm();
+    best_ = sub;
+    for (int i = 0; i < 4; ++i) best_weights_[i] = weights[i];
+  }
+  bool any() const { return best_distance_ < std::numeric_limits<S>::infinity(); }
+  void into(Simplex<S>* s, S lambda[4]) const {
+    *s = best_;
+    for (int i = 0; i < 4; ++i) lambda[i] = best_weights_[i];
+  }
+
+ private:
+  Simplex<S> best_;
+  S best_weights_[4] = {};
+  S best_distance_ = std::numeric_limits<S>::infinity();
+};
+
 /// The nearest point to the origin of the simplex's hull, as barycentric weights `lambda` over
 /// the kept points; the simplex is reduced to the points with positive weight. False if the
 /// origin is inside a tetrahedron (C's hull reaches it).
@@ -107,25 +132,16 @@ void nearestOnTriangle(Simplex<S>* s, S lambda[4]) {
   }
   const S denominator = va + vb + vc;
   if (!(std::abs(denominator) > S(0))) {  // degenerate: the best of its edges
-    Simplex<S> best;
-    S best_lambda[4] = {};
-    S best_distance = std::numeric_limits<S>::infinity();
+    NearestOfSeveral<S> best;
     for (auto edge : {std::initializer_list<int>{0, 1}, {0, 2}, {1, 2}}) {
       Simplex<S> e = *s;
       e.keep(edge);
       S l[4] = {};
       nearestOnSegment(&e, l);
-      Vector3<S> v = Vector3<S>::Zero();
-      for (int i = 0; i < e.size; ++i) v += l[i] * e.w[i];
-      if (v.squaredNorm() < best_distance) {
-        best_distance = v.squaredNorm();
-        best = e;
-        for (int i = 0; i < 4; ++i) best_lambda[i] = l[i];
-      }
+      best.offer(e, l);
     }
-    *s = best;
-    for (int i = 0; i < 4; ++i) lambda[i] = best_lambda[i];
-    return;
+    if (!best.any()) return vertex(0);  // not a number anywhere: the search gives up later
+    return best.into(s, lambda);
   }
   lambda[1] = vb / denominator;
   lambda[2] = vc / denominator;
@@ -149,32 +165,21 @@ bool nearest(Simplex<S>* s, S lambda[4]) {
   }
   // Tetrahedron (Ericson 5.1.6): the nearest point of each face the origin lies outside of.
   static constexpr int kFaces[4][4] = {{0, 1, 2, 3}, {0, 1, 3, 2}, {0, 2, 3, 1}, {1, 2, 3, 0}};
-  bool outside_any = false;
-  S best_distance = std::numeric_limits<S>::infinity();
-  Simplex<S> best;
-  S best_lambda[4] = {};
+  NearestOfSeveral<S> best;
   for (const auto& f : kFaces) {
     const Vector3<S> n = (s->w[f[1]] - s->w[f[0]]).cross(s->w[f[2]] - s->w[f[0]]);
     const S origin_side = -s->w[f[0]].dot(n), opposite_side = (s->w[f[3]] - s->w[f[0]]).dot(n);
     // Outside this face: the origin and the fourth point on opposite sides of its plane (a flat
     // tetrahedron counts every face).
     if (!(origin_side * opposite_side < S(0)) && opposite_side != S(0)) continue;
-    outside_any = true;
     Simplex<S> face = *s;
     face.keep({f[0], f[1], f[2]});
     S l[4] = {};
     nearestOnTriangle(&face, l);
-    Vector3<S> v = Vector3<S>::Zero();
-    for (int i = 0; i < face.size; ++i) v += l[i] * face.w[i];
-    if (v.squaredNorm() < best_distance) {
-      best_distance = v.squaredNorm();
-      best = face;
-      for (int i = 0; i < 4; ++i) best_lambda[i] = l[i];
-    }
+    best.offer(face, l);
   }
-  if (!outside_any) return false;
-  *s = best;
-  for (int i = 0; i < 4; ++i) lambda[i] = best_lambda[i];
+  if (!best.any()) return false;
+  best.into(s, lambda);
   return true;
 }
 
