@@ -97,7 +97,7 @@ std::optional<Payload> minimumAround(At at, S x0) {
 }
 
 /// The exact answer for separated shapes, if a candidate among the features within `margin` of
-/// libccd's witness is certified.
+/// the start's witness (GJK's or libccd's: candidates.h) is certified.
 template <typename S>
 std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Round<S>& b,
                                          const PairHit<S>& start, S margin) {
@@ -206,8 +206,8 @@ std::optional<PairHit<S>> roundHit(const Pair<S>& pair) {
   return exactPair(
       pair, extent, [&](const Vector3<S>& u) { return b->supportPoint(u); },
       [&](const PairHit<S>& start) {
-        // The features near libccd's witness; failing that (its witness can be off by more than
-        // the margin, far away), every feature.
+        // The features near the start's witness; failing that (its witness can be off by more
+        // than the margin, far away), every feature.
         if (auto hit = exactSeparated(pair, *b, start, S(1e-3) * extent)) return hit;
         return exactSeparated(pair, *b, start, std::numeric_limits<S>::infinity());
       },
