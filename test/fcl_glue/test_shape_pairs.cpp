@@ -459,6 +459,45 @@ TEST(ShapePairs, DegenerateConfigurations) {
   }
 }
 
+// A tetrahedron 1e285 across around a box-like superellipsoid (the fuzzer's input,
+// docs/hardening.md, finding 14): libccd's GJK distance, which the overlap path once called,
+// aborted the process on an assertion inside libfcl. Every call answers: an overlap, finite.
+TEST(ShapePairs, HugeTetrahedronAroundTheShapeNeverAborts) {
+  const auto shape =
+      std::make_shared<Superellipsoidd>(0x1.7a7bp+3, 0x1.d9d9d9d9d9d9ep+3, 0x1.d9d9d9d9d9ffp+2,
+                                        0x1.fffffff676767p-5, 0x1.b3b3b3b3b3b3bp+0);
+  const double l = 0x1.69eca45b4b8b8p+948;
+  auto vertices = std::make_shared<std::vector<Vector3<double>>>(
+      std::vector<Vector3<double>>{{l, l, l}, {l, -l, -l}, {-l, l, -l}, {-l, -l, l}});
+  auto faces = std::make_shared<std::vector<int>>(
+      std::vector<int>{3, 0, 1, 2, 3, 0, 3, 1, 3, 0, 2, 3, 3, 1, 3, 2});
+  const auto tetrahedron = std::make_shared<fcl::Convexd>(vertices, 4, faces);
+  fcl::Matrix3d turn;
+  turn << 0, 0, 1, 1, 0, 0, 0, 1, 0;
+  fcl::Transform3d X_WA = fcl::Transform3d::Identity(), X_WB = fcl::Transform3d::Identity();
+  X_WA.linear() = X_WB.linear() = turn;
+  X_WA.translation().setConstant(0x1.d9d9d9d9d9d9ep+4);
+  X_WB.translation().setConstant(0x1.6363636363636p+5);
+  const fcl::CollisionObjectd a(shape, X_WA), b(tetrahedron, X_WB);
+  fcl::detail::GJKSolver_libccdd solver;
+  for (bool shape_first : {true, false}) {
+    const fcl::CollisionObjectd* o1 = shape_first ? &a : &b;
+    const fcl::CollisionObjectd* o2 = shape_first ? &b : &a;
+    fcl::DistanceRequestd request(true, true);
+    request.enable_signed_distance = true;
+    fcl::DistanceResultd front, table;
+    fcl_superellipsoid::distance(o1, o2, request, front);
+    fcl::distance(o1, o2, &solver, request, table);
+    for (const fcl::DistanceResultd* r : {&front, &table}) {
+      EXPECT_TRUE(std::isfinite(r->min_distance));
+      EXPECT_LT(r->min_distance, 0.0) << "the shape is inside the tetrahedron";
+    }
+    fcl::CollisionResultd contacts;
+    fcl_superellipsoid::collide(o1, o2, fcl::CollisionRequestd(1, true), contacts);
+    EXPECT_TRUE(contacts.isCollision());
+  }
+}
+
 // Float: every kind of partner agrees with the double answer to float's precision.
 TEST(ShapePairs, FloatAgreesWithDouble) {
   std::mt19937 rng(6);

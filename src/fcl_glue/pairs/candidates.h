@@ -15,6 +15,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 
 #include "fcl_glue/pairs/gjk.h"
 #include "fcl_glue/pairs/libccd_pair.h"
@@ -75,30 +76,33 @@ class Candidates {
 /// separated search then solves exactly and certifies.
 constexpr double kGjkRelativeGap = 1e-4;
 constexpr int kGjkIterations = 64;
+/// Where the features of that start are not certified, GJK once more to this gap.
+constexpr double kGjkTightGap = 1e-10;
+constexpr int kGjkTightIterations = 256;
 
 /// The pair's answer. Where our GJK (gjk.h, with the superellipsoid's exact support points and
 /// `other_support_point(u)`, the other geometry's point farthest along u) finds the shapes apart,
-/// `separated(start)` (an std::optional<PairHit<S>>, certified or nothing) from its witnesses.
-/// Otherwise, or if nothing is certified, libccd's start (libccd_pair.h): `separated(start)`
-/// where libccd finds the shapes apart or within its own error of touching (about 1e-5 × size;
-/// the exact answer then decides the sign), else, or if nothing is certified, `overlap(start)`
+/// `separated(start)` (an std::optional<PairHit<S>>, certified or nothing) from its witnesses;
+/// if nothing is certified, again from a GJK run to a tight gap. Otherwise libccd's overlap start
+/// (MPR, libccd_pair.h): `separated(start)` where the shapes are within 1e-3 × size of touching
+/// (the exact answer then decides the sign), else, or if nothing is certified, `overlap(start)`
 /// (a PairHit: depth_candidates.h).
 template <typename S, typename OtherSupportPoint, typename Separated, typename Overlap>
 std::optional<PairHit<S>> exactPair(const Pair<S>& pair, S other_size,
                                     const OtherSupportPoint& other_support_point,
                                     Separated separated, Overlap overlap) {
   auto shape_support_point = [&pair](const Vector3<S>& u) { return shapeSupport(pair, u); };
-  const std::optional<GjkSeparation<S>> apart =
-      gjkSeparation<S>(shape_support_point, other_support_point,
-                       Vector3<S>(pair.X_WO->translation() - pair.X_WS->translation()),
-                       S(kGjkRelativeGap), kGjkIterations);
-  if (apart) {
+  for (const auto& [gap, iterations] : {std::pair<S, int>{S(kGjkRelativeGap), kGjkIterations},
+                                        std::pair<S, int>{S(kGjkTightGap), kGjkTightIterations}}) {
+    const std::optional<GjkSeparation<S>> apart = gjkSeparation<S>(
+        shape_support_point, other_support_point,
+        Vector3<S>(pair.X_WO->translation() - pair.X_WS->translation()), gap, iterations);
+    if (!apart) break;  // touching or overlapping (or not settled): a tighter gap will not help
     const Vector3<S> normal = (apart->on_b - apart->on_a).normalized();
-    if (normal.allFinite()) {
-      if (const std::optional<PairHit<S>> answer =
-              separated(PairHit<S>{apart->distance, apart->on_b, apart->on_a, normal, -1})) {
-        return answer;
-      }
+    if (!normal.allFinite()) break;
+    if (const std::optional<PairHit<S>> answer =
+            separated(PairHit<S>{apart->distance, apart->on_b, apart->on_a, normal, -1})) {
+      return answer;
     }
   }
   const std::optional<PairHit<S>> start = libccdHit(pair);

@@ -41,24 +41,15 @@ CcdObject<S> ccdObject(const fcl::TriangleP<S>& t, const fcl::Transform3<S>& X) 
           fcl::detail::triGetCenterFunction(), &fcl::detail::triDeleteGJKObject};
 }
 
-/// The signed distance through libccd, as a hit (points in world coordinates), with the
-/// iteration limits and tolerances of a default GJKSolver_libccd: GJK where they are apart, MPR
-/// where they overlap. (Not libccd's polytope expansion, FCL's signed distance: it throws "origin
-/// outside the polytope" on some overlaps, and leaks its polytope when it does.)
+/// libccd's overlap (MPR) as a hit (points in world coordinates), with the iteration limits and
+/// tolerances of a default GJKSolver_libccd. (Neither libccd's GJK distance, which aborts on some
+/// inputs — libccd_pair.h —, nor its polytope expansion, FCL's signed distance, which throws
+/// "origin outside the polytope" on some overlaps and leaks its polytope when it does.)
 template <typename S, typename Other>
 PairHit<S> ccdHit(const Pair<S>& pair, const Other& other) {
   const fcl::detail::GJKSolver_libccd<S> solver;
   const CcdObject<S> a = ccdObject(*pair.shape, *pair.X_WS);
   const CcdObject<S> b = ccdObject(other, *pair.X_WO);
-  S d = S(0);
-  Vector3<S> on_shape, on_other;
-  if (fcl::detail::GJKDistance<S>(a.object, a.support, b.object, b.support,
-                                  solver.max_distance_iterations, solver.distance_tolerance, &d,
-                                  &on_shape, &on_other) &&
-      std::isfinite(d) && on_shape.allFinite() && on_other.allFinite() &&
-      (on_other - on_shape).norm() > S(0)) {
-    return {d, on_other, on_shape, Vector3<S>((on_other - on_shape).normalized()), -1};
-  }
   Vector3<S> pos, n;
   S depth = S(0);
   const bool overlap =
@@ -73,7 +64,7 @@ PairHit<S> ccdHit(const Pair<S>& pair, const Other& other) {
     return {-depth, Vector3<S>(pos - S(0.5) * depth * n), Vector3<S>(pos + S(0.5) * depth * n), n,
             -1};
   }
-  // Touching (GJK finds no gap, MPR no overlap): distance 0 on the line of the centres.
+  // No overlap: distance 0 on the line of the centres.
   Vector3<S> towards = pair.X_WO->translation() - pair.X_WS->translation();
   if (!(towards.norm() > S(0))) towards = Vector3<S>::UnitZ();
   towards.normalize();

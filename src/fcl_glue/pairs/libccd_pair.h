@@ -2,12 +2,13 @@
 #define FCL_SUPERELLIPSOID_SRC_FCL_GLUE_PAIRS_LIBCCD_PAIR_H
 
 // Internal: the superellipsoid against FCL's shapes with flat faces, edges or rims (fcl::Box,
-// Capsule, Cylinder, Cone, Convex, TriangleP) through libccd, with the shape's exact support
-// function (gjk_support.h): GJK's distance where they are apart, MPR's depth and normal where
-// they overlap, in the iteration limits and tolerances of a default GJKSolver_libccd. Its
-// accuracy is libccd's (docs/fcl-notes.md → "libccd with the exact support"). The pairs with
-// flat features start from it: its witness picks the features to try (candidates.h), its normal
-// is one of the overlap's candidate directions (depth_candidates.h).
+// Capsule, Cylinder, Cone, Convex, TriangleP) through libccd's MPR, with the shape's exact
+// support function (gjk_support.h): depth and normal where they overlap, in the iteration limits
+// and tolerances of a default GJKSolver_libccd; its accuracy is libccd's (docs/fcl-notes.md →
+// "libccd with the exact support"). The pairs with flat features start from it where their own
+// GJK (gjk.h) finds no separation: its normal is one of the overlap's candidate directions
+// (depth_candidates.h). Not libccd's GJK distance: FCL 0.7's, as Debian builds it (assertions
+// on), aborts the process on some inputs (docs/hardening.md → "Findings", 14).
 
 #include <optional>
 
@@ -16,8 +17,10 @@
 namespace fcl_superellipsoid {
 namespace detail {
 
-/// libccd's hit for the pair if the other geometry is one of the shapes above (the exact
-/// pairs use it where they hand over); std::nullopt otherwise.
+/// libccd's overlap for the pair if the other geometry is one of the shapes above: MPR's depth
+/// (a negative distance), normal and witnesses; where MPR finds no overlap, distance 0 at the
+/// shape's support point on the line of the centres (touching, or apart by more than MPR sees).
+/// std::nullopt if the other geometry is none of the shapes above.
 template <typename S>
 std::optional<PairHit<S>> libccdHit(const Pair<S>& pair);
 
