@@ -15,9 +15,10 @@
 // overlap path decides) or after `max_iterations`.
 //
 // The answer only has to pick out the features near the contact: the caller certifies its own
-// exact answer by the duality gap and falls back to libccd where that fails.
+// exact answer by the duality gap (candidates.h says what it does where that fails).
 
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <optional>
 
@@ -52,6 +53,13 @@ struct Simplex {
     }
     size = k;
   }
+
+  /// Σ weights_i·points_i over the kept points (w, a or b).
+  Vector3<S> combination(const Vector3<S> (&points)[4], const S weights[4]) const {
+    Vector3<S> out = Vector3<S>::Zero();
+    for (int i = 0; i < size; ++i) out += weights[i] * points[i];
+    return out;
+  }
 };
 
 /// Of several sub-simplices with their nearest points (weights over each), the one nearest the
@@ -60,8 +68,7 @@ template <typename S>
 class NearestOfSeveral {
  public:
   void offer(const Simplex<S>& sub, const S weights[4]) {
-    Vector3<S> v = Vector3<S>::Zero();
-    for (int i = 0; i < sub.size; ++i) v += weights[i] * sub.w[i];
+    const Vector3<S> v = sub.combination(sub.w, weights);
     if (!(v.squaredNorm() < best_distance_)) return;
     best_distance_ = v.squaredNorm();
     best_ = sub;
@@ -204,12 +211,8 @@ std::optional<GjkSeparation<S>> gjkSeparation(const SupportA& support_a, const S
   const S rounding = S(64) * std::numeric_limits<S>::epsilon();
   S lower = S(0);
   auto answer = [&] {
-    GjkSeparation<S> out{v.norm(), lower, Vector3<S>::Zero(), Vector3<S>::Zero()};
-    for (int i = 0; i < s.size; ++i) {
-      out.on_a += lambda[i] * s.a[i];
-      out.on_b += lambda[i] * s.b[i];
-    }
-    return std::optional<GjkSeparation<S>>(out);
+    return std::optional<GjkSeparation<S>>(
+        GjkSeparation<S>{v.norm(), lower, s.combination(s.a, lambda), s.combination(s.b, lambda)});
   };
   for (int it = 0; it < max_iterations; ++it) {
     const S vv = v.squaredNorm();
@@ -234,8 +237,7 @@ std::optional<GjkSeparation<S>> gjkSeparation(const SupportA& support_a, const S
     ++grown.size;
     S grown_lambda[4] = {};
     if (!gjk::nearest(&grown, grown_lambda)) return std::nullopt;  // the origin is inside
-    Vector3<S> next = Vector3<S>::Zero();
-    for (int i = 0; i < grown.size; ++i) next += grown_lambda[i] * grown.w[i];
+    const Vector3<S> next = grown.combination(grown.w, grown_lambda);
     if (!(next.squaredNorm() < vv)) return answer();  // no progress: as above
     s = grown;
     for (int i = 0; i < 4; ++i) lambda[i] = grown_lambda[i];

@@ -5,12 +5,12 @@
 // exactly when they are separated (docs/math.md → "Shape pairs"). The distance to a polytope is
 // reached on one of its features: a face (the superellipsoid's support point against the face's
 // normal, if it projects inside the face), an edge (segment_search.h) or a vertex (the point
-// solver). libccd's answer picks the candidates: the features spanned by the vertices that are
-// within a margin of the polytope's support along libccd's normal. Each candidate is a pair of
-// real surface points, so its distance is an upper bound; the support functions along its
+// solver). A start (our GJK, gjk.h) picks the candidates: the features spanned by the vertices
+// that are within a margin of the polytope's support along its normal. Each candidate is a pair
+// of real surface points, so its distance is an upper bound; the support functions along its
 // normal give a lower bound; the first candidate whose bounds meet (the duality gap below
-// 1e-12 × size) is the answer. Overlapping, or with no candidate certified, libccd's answer
-// stands (libccd_pair.h).
+// 1e-12 × size) is the answer. Overlapping, or with no candidate certified, the least F over
+// candidate directions (depth_candidates.h); candidates.h chains the two.
 
 #include <optional>
 

@@ -6,8 +6,9 @@
 // support point against the disc's normal, if it lands on the disc), the side (a one-parameter
 // family of normals: a search over its angle), the rims (a search along the circle with the
 // point solver) and the cone's apex (the point solver). The candidates are the features within
-// a margin of libccd's witness; as for polytopes (polytope_pair.h) each is certified by its
-// duality gap, and overlapping shapes, or no certified candidate, keep libccd's answer.
+// a margin of the start's witness (our GJK, gjk.h); as for polytopes (polytope_pair.h) each is
+// certified by its duality gap, and overlapping shapes, or no certified candidate, get the least
+// F over candidate directions (depth_candidates.h).
 
 #include <optional>
 
