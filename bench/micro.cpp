@@ -1,9 +1,9 @@
 // Google Benchmark micro-benchmarks: one query per iteration, cycling through 1,024 points
 // near the surface, for each method and shape class; a new shape's first inside query; and the
 // batched Exact query over the same 1,024 points per iteration, on SIMD lanes and on the scalar
-// path. The full comparison is
-// fse_bench; this target is for profiling one method and for tracking regressions with Google
-// Benchmark's tooling (--benchmark_filter, --benchmark_format=json, compare.py).
+// path, and over a contact band of the cloth shape (±0.05 of its surface, half inside). The full
+// comparison is fse_bench; this target is for profiling one method and for tracking regressions
+// with Google Benchmark's tooling (--benchmark_filter, --benchmark_format=json, compare.py).
 
 #include <benchmark/benchmark.h>
 
@@ -46,10 +46,15 @@ void runQueries(benchmark::State& state, const std::string& shape_class,
 /// The batched Exact query (1e-12, one thread) over the same 1,024 points per iteration, on
 /// SIMD lanes or on the scalar path: its items per second are vertices per second, so the time
 /// per vertex compares directly with the single-query rows above.
-void runBatch(benchmark::State& state, const std::string& shape_class, bool vectorize) {
+/// With `band`, the points are a contact band instead: within ±0.05 of the surface along the
+/// normal, about half of them inside (makeContactBand; the cloth scene's contacts).
+void runBatch(benchmark::State& state, const std::string& shape_class, bool vectorize,
+              bool band = false) {
   const Superellipsoid<double> shape = shapeClass(shape_class).make();
-  const PointSet points = makePointSet(shapeClass(shape_class), Side::kNear, 1024, 1, 7);
-  const Eigen::Map<const Matrix3X<double>> p_WV(points.points[0].data(), 3, 1024);
+  const std::vector<Vector3<double>> points =
+      band ? makeContactBand(shape, 1024, 0.05, 7)
+           : makePointSet(shapeClass(shape_class), Side::kNear, 1024, 1, 7).points;
+  const Eigen::Map<const Matrix3X<double>> p_WV(points[0].data(), 3, 1024);
   BatchOptions<double> options;
   options.threads = 1;
   options.vectorize = vectorize;
@@ -115,6 +120,11 @@ void registerAll() {
         runBatch(state, shape_class, vectorize);
       });
     }
+    const std::string band = std::string(vectorize ? "BatchSimd" : "BatchScalar") + "/" +
+                             simdInstructionSet() + "/cloth-band";
+    benchmark::RegisterBenchmark(band.c_str(), [vectorize](benchmark::State& state) {
+      runBatch(state, "cloth", vectorize, true);
+    });
   }
 }
 

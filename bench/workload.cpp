@@ -143,18 +143,38 @@ PointSet makePointSet(const BenchShape& s, Side side, int n, int reference_n, un
   return set;
 }
 
+namespace {
+
+/// A surface point of uniform parametric angles stepped along its normal by U(−1, 1) × half_width.
+Vector3<double> bandPoint(const Superellipsoid<double>& shape, double half_width,
+                          std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1, 1), eta(-M_PI / 2, M_PI / 2), omega(-M_PI, M_PI);
+  const Vector3<double> p = shape.surfacePoint(eta(rng), omega(rng));
+  return p + half_width * u(rng) * shape.normal(p);
+}
+
+}  // namespace
+
+std::vector<Vector3<double>> makeContactBand(const Superellipsoid<double>& shape, int n,
+                                             double half_width, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::vector<Vector3<double>> band;
+  band.reserve(n);
+  for (int i = 0; i < n; ++i) band.push_back(bandPoint(shape, half_width, rng));
+  return band;
+}
+
 std::vector<Vector3<double>> makeSceneCloud(const Superellipsoid<double>& shape, int n,
                                             double near_fraction, unsigned seed) {
   std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1, 1), eta(-M_PI / 2, M_PI / 2), omega(-M_PI, M_PI);
+  std::uniform_real_distribution<double> u(-1, 1);
   const double size = shape.size();
   const int near = static_cast<int>(std::lround(near_fraction * n));
   std::vector<Vector3<double>> cloud;
   cloud.reserve(n);
   for (int i = 0; i < n; ++i) {
     if (i < near) {
-      const Vector3<double> p = shape.surfacePoint(eta(rng), omega(rng));
-      cloud.push_back(p + 0.05 * size * u(rng) * shape.normal(p));
+      cloud.push_back(bandPoint(shape, 0.05 * size, rng));
     } else {
       cloud.push_back(10 * size * Vector3<double>(u(rng), u(rng), u(rng)));
     }

@@ -57,6 +57,12 @@ struct PointSet {
 /// Surface points are the paper's: uniform parametric angles η ∈ (−π/2, π/2), ω ∈ (−π, π).
 PointSet makePointSet(const BenchShape& shape, Side side, int n, int reference_n, unsigned seed);
 
+/// A contact band: n vertices within ±half_width (length units) of the surface, stepped along
+/// the normal by a uniform offset from surface points of uniform parametric angles, so about
+/// half of them are inside. What a cloth resting on the shape asks every step.
+std::vector<Vector3<double>> makeContactBand(const Superellipsoid<double>& shape, int n,
+                                             double half_width, unsigned seed);
+
 /// A scene's point cloud around `shape` (at the origin): `near_fraction` of the n vertices
 /// within ±0.05 × size of the surface (stepped along the normal), the rest uniform in a
 /// cube of side 20 × size. The culling and scaling sections use it.

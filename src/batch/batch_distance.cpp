@@ -100,28 +100,43 @@ struct ChunkLanes {
   std::size_t count = 0;
   std::array<S, kCapacity> query[3], hint[3], point[3], normal[3], error;
   std::array<std::int32_t, kCapacity> status;
-  std::array<std::size_t, kCapacity> source;  // the lane of the outside pass (inside pass only)
+  std::array<std::size_t, kCapacity> source;  // the lane's index before swaps
+  std::array<S, kCapacity> radial[detail::LaneArrays<S>::kRadialArrays];  // the radial starts
 
-  detail::LaneArrays<S> arrays(bool with_hints) {
-    detail::LaneArrays<S> out{{query[0].data(), query[1].data(), query[2].data()},
+  /// The lanes from `from` on.
+  detail::LaneArrays<S> arrays(bool with_hints, std::size_t from = 0) {
+    detail::LaneArrays<S> out{{&query[0][from], &query[1][from], &query[2][from]},
                               {nullptr, nullptr, nullptr},
-                              {point[0].data(), point[1].data(), point[2].data()},
-                              {normal[0].data(), normal[1].data(), normal[2].data()},
-                              error.data(),
-                              status.data()};
+                              {&point[0][from], &point[1][from], &point[2][from]},
+                              {&normal[0][from], &normal[1][from], &normal[2][from]},
+                              &error[from],
+                              &status[from],
+                              {}};
+    for (int k = 0; k < detail::LaneArrays<S>::kRadialArrays; ++k) out.radial[k] = &radial[k][from];
     if (with_hints) {
-      for (int c = 0; c < 3; ++c) out.hint[c] = hint[c].data();
+      for (int c = 0; c < 3; ++c) out.hint[c] = &hint[c][from];
     }
     return out;
   }
+  /// Exchanges the inputs of lanes a and b.
+  void swap(std::size_t a, std::size_t b, bool with_hints) {
+    for (int c = 0; c < 3; ++c) {
+      std::swap(query[c][a], query[c][b]);
+      if (with_hints) std::swap(hint[c][a], hint[c][b]);
+    }
+    std::swap(source[a], source[b]);
+    for (auto& r : radial) std::swap(r[a], r[b]);
+  }
   /// Fills the lanes up to a whole vector with copies of the last one (results ignored); the
-  /// hints too where they were filled.
-  void pad(bool with_hints) {
+  /// hints and the radial starts too where they were filled.
+  void pad(bool with_hints, bool with_radial) {
     for (std::size_t k = count; k < count + detail::kMaxLanes && count > 0; ++k) {
       for (int c = 0; c < 3; ++c) {
         query[c][k] = query[c][count - 1];
         if (with_hints) hint[c][k] = hint[c][count - 1];
       }
+      if (!with_radial) continue;
+      for (auto& r : radial) r[k] = r[count - 1];
     }
   }
 };
@@ -175,71 +190,78 @@ class VertexSolver {
       count(std::size_t(last - first) - solved, 0, solved);
       return;
     }
+    // The kept vertices in index order; those the kernel solves have a lane, the others (far
+    // away, where squares may overflow in the kernel; near the centre, where subnormal
+    // coordinates lose their direction) have their own answer in the scalar path.
     ChunkLanes<S> lanes;
-    std::size_t own_answer = 0;  // far or near-centre vertices: the scalar path
+    std::size_t kept = 0, own_answer = 0;
     std::array<Eigen::Index, kChunk> vertex;
     std::array<Vector3<S>, kChunk> p_SV;
+    std::array<std::size_t, kChunk> lane_of;
+    constexpr std::size_t kOwnAnswer = ~std::size_t(0);
     for (Eigen::Index i = first; i < last; ++i) {
-      const std::size_t k = lanes.count;
-      p_SV[k] = inShapeFrame(i);
-      if (!keep(p_SV[k])) continue;
-      // Far away, squares may overflow in the kernel; near the centre, subnormal coordinates
-      // lose their direction: both have their own answer in the scalar path.
-      if (detail::isFarQuery(shape_, p_SV[k]) || detail::isNearCentreQuery(shape_, p_SV[k])) {
-        emit(i, solve(i, p_SV[k]));
+      const Vector3<S> p = inShapeFrame(i);
+      if (!keep(p)) continue;
+      vertex[kept] = i;
+      p_SV[kept] = p;
+      if (detail::isFarQuery(shape_, p) || detail::isNearCentreQuery(shape_, p)) {
+        lane_of[kept++] = kOwnAnswer;
         ++own_answer;
         continue;
       }
-      vertex[k] = i;
-      for (int c = 0; c < 3; ++c) lanes.query[c][k] = std::abs(p_SV[k][c]);
+      const std::size_t k = lanes.count++;
+      lane_of[kept++] = k;
+      lanes.source[k] = k;
+      for (int c = 0; c < 3; ++c) lanes.query[c][k] = std::abs(p[c]);
       if (options_.warm_start_W != nullptr) {
         const Vector3<S> hint = X_SW_ * options_.warm_start_W->col(i);
         for (int c = 0; c < 3; ++c) lanes.hint[c][k] = std::abs(hint[c]);
       }
-      ++lanes.count;
     }
-    const std::size_t culled = std::size_t(last - first) - lanes.count - own_answer;
-    if (lanes.count == 0) return count(culled, 0, own_answer);
-    const bool with_hints = options_.warm_start_W != nullptr;
-    lanes.pad(with_hints);
-    detail::solveLanes(problem_, lanes.arrays(with_hints), lanes.count, false);
-
-    // The vertices found inside, gathered into whole vectors for the inside pass.
-    ChunkLanes<S> inside;
-    for (std::size_t k = 0; k < lanes.count; ++k) {
-      if (lanes.status[k] != detail::kLaneInside) continue;
-      for (int c = 0; c < 3; ++c) inside.query[c][inside.count] = lanes.query[c][k];
-      inside.source[inside.count++] = k;
-    }
-    std::array<bool, kChunk> is_inside{};
-    if (inside.count > 0) {
-      inside.pad(false);
-      detail::solveLanes(problem_, inside.arrays(false), inside.count, true);
-      for (std::size_t j = 0; j < inside.count; ++j) {
-        const std::size_t k = inside.source[j];
-        is_inside[k] = true;
-        lanes.status[k] = inside.status[j];
-        for (int c = 0; c < 3; ++c) {
-          lanes.point[c][k] = inside.point[c][j];
-          lanes.normal[c][k] = inside.normal[c][j];
-        }
+    const std::size_t culled = std::size_t(last - first) - kept;
+    std::size_t outside = 0;
+    if (lanes.count > 0) {
+      const bool with_hints = options_.warm_start_W != nullptr;
+      lanes.pad(with_hints, false);
+      // Outside vertices first, inside ones after them, so that each pass runs on whole vectors
+      // of its own lanes (a vector iterates as long as its slowest lane).
+      detail::solveLanes(problem_, lanes.arrays(false), lanes.count, detail::LanePass::kClassify);
+      for (std::size_t k = 0; k < lanes.count; ++k) {
+        if (lanes.status[k] == detail::kLaneInside) continue;
+        if (k != outside) lanes.swap(k, outside, with_hints);
+        ++outside;
+      }
+      std::array<std::size_t, kChunk> slot;  // lane → where the partition put it
+      for (std::size_t k = 0; k < lanes.count; ++k) slot[lanes.source[k]] = k;
+      for (std::size_t j = 0; j < kept; ++j) {
+        if (lane_of[j] != kOwnAnswer) lane_of[j] = slot[lane_of[j]];
+      }
+      lanes.pad(with_hints, true);
+      if (outside > 0) {
+        detail::solveLanes(problem_, lanes.arrays(with_hints), outside, detail::LanePass::kOutside);
+      }
+      if (outside < lanes.count) {
+        detail::solveLanes(problem_, lanes.arrays(false, outside), lanes.count - outside,
+                           detail::LanePass::kInside);
       }
     }
 
+    // In index order: the kernel's answers, and the scalar solver's for the rest.
     std::size_t handed_back = 0;
-    for (std::size_t k = 0; k < lanes.count; ++k) {
-      if (lanes.status[k] != detail::kLaneSolved) {
-        emit(vertex[k], solve(vertex[k], p_SV[k]));
-        ++handed_back;
+    for (std::size_t j = 0; j < kept; ++j) {
+      const std::size_t k = lane_of[j];
+      if (k == kOwnAnswer || lanes.status[k] != detail::kLaneSolved) {
+        emit(vertex[j], solve(vertex[j], p_SV[j]));
+        if (k != kOwnAnswer) ++handed_back;
         continue;
       }
       // Back from the first octant to the vertex's own, then to W.
       PointDistanceResult<S> r = detail::fromFirstOctant(
-          p_SV[k], Vector3<S>(lanes.point[0][k], lanes.point[1][k], lanes.point[2][k]),
-          Vector3<S>(lanes.normal[0][k], lanes.normal[1][k], lanes.normal[2][k]), is_inside[k]);
+          p_SV[j], Vector3<S>(lanes.point[0][k], lanes.point[1][k], lanes.point[2][k]),
+          Vector3<S>(lanes.normal[0][k], lanes.normal[1][k], lanes.normal[2][k]), k >= outside);
       r.nearest_point = X_WS_ * r.nearest_point;
       r.normal = X_WS_.linear() * r.normal;
-      emit(vertex[k], r);
+      emit(vertex[j], r);
     }
     count(culled, lanes.count - handed_back, handed_back + own_answer);
   }

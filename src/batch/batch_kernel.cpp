@@ -26,6 +26,7 @@
 #include "batch/batch_kernel.h"
 #include "batch/simd_targets_for_test.h"
 #include "fcl_superellipsoid/batch_distance.h"
+#include "solvers/ball_certificate.h"
 #include "solvers/exact_rules.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -258,6 +259,11 @@ class LaneSolver {
   Candidate<D> candidateOnRay(const Vec3<D>& ray, V* gauge = nullptr) const {
     const NormEval<D> e = Evaluate(d_, primal_, ray);
     if (gauge != nullptr) *gauge = e.value;
+    return candidateFrom(ray, e);
+  }
+
+  /// The same from the gauge's evaluation `e` at `ray`.
+  Candidate<D> candidateFrom(const Vec3<D>& ray, const NormEval<D>& e) const {
     Candidate<D> c;
     const V inv_value = hn::Div(hn::Set(d_, 1), e.value);
     c.point = Times(inv_value, ray);
@@ -515,6 +521,19 @@ Vec3<D> LoadVec3(D d, const hn::TFromD<D>* const* arrays, std::size_t i) {
   return {hn::LoadU(d, arrays[0] + i), hn::LoadU(d, arrays[1] + i), hn::LoadU(d, arrays[2] + i)};
 }
 
+/// The radial start of the lanes at i (candidateOnRay(y)) from the classifying pass's
+/// evaluation, and G(Q).
+template <class D>
+Candidate<D> RadialStart(D d, const LaneSolver<D>& solver, const Vec3<D>& y,
+                         const LaneArrays<hn::TFromD<D>>& lanes, std::size_t i, hn::Vec<D>* gauge) {
+  hn::Vec<D> v[LaneArrays<hn::TFromD<D>>::kRadialArrays];
+  for (int k = 0; k < LaneArrays<hn::TFromD<D>>::kRadialArrays; ++k) {
+    v[k] = hn::LoadU(d, lanes.radial[k] + i);
+  }
+  *gauge = v[0];
+  return solver.candidateFrom(y, {v[0], {v[1], v[2], v[3]}, {v[4], v[5], v[6], v[7], v[8], v[9]}});
+}
+
 template <class D>
 void StoreAnswer(D d, const Candidate<D>& c, hn::Mask<D> solved, hn::Mask<D> inside,
                  const LaneArrays<hn::TFromD<D>>& lanes, std::size_t i) {
@@ -544,7 +563,7 @@ void SolveOutsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
   const Vec3<D> y = LoadVec3(d, lanes.query, i);
   LaneSolver<D> solver(d, problem, y, T(1));
   hn::Vec<D> gauge;
-  Candidate<D> start = solver.candidateOnRay(y, &gauge);
+  Candidate<D> start = RadialStart(d, solver, y, lanes, i, &gauge);
   const auto inside = hn::Lt(gauge, hn::Set(d, 1));
   const auto outside = hn::Not(inside);
   if (lanes.hint[0] != nullptr) {
@@ -559,6 +578,34 @@ void SolveOutsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
   StoreAnswer(d, c, solved, inside, lanes, i);
 }
 
+/// ball_certificate.h's Hessian-ball certificate on the lanes of `lanes`, one lane at a time
+/// through the scalar solver's own function: converged inside candidates `c` at `distance` from
+/// the queries `y`.
+template <class D>
+hn::Mask<D> HessianBallLanes(D d, const LaneProblem<hn::TFromD<D>>& problem,
+                             const NormLanes<D>& primal, const Vec3<D>& y, const Candidate<D>& c,
+                             hn::Vec<D> distance, hn::Mask<D> lanes) {
+  using T = hn::TFromD<D>;
+  // The gradient afresh: after dual iterations a candidate's gradient is its start's.
+  const Vec3<D> gradient = Evaluate(d, primal, c.point).gradient;
+  T lane[12][kMaxLanes];
+  const hn::Vec<D> values[12] = {
+      y.x,        y.y,       y.z,        c.point.x,
+      c.point.y,  c.point.z, gradient.x, gradient.y,
+      gradient.z, distance,  c.error,    hn::IfThenElseZero(lanes, hn::Set(d, T(1)))};
+  for (int k = 0; k < 12; ++k) hn::StoreU(values[k], d, lane[k]);
+  for (std::size_t k = 0; k < hn::Lanes(d); ++k) {
+    if (lane[11][k] == T(0)) continue;
+    auto vector = [&](int row) {
+      return Vector3<T>(lane[row][k], lane[row + 1][k], lane[row + 2][k]);
+    };
+    const bool ball = hessianBallCertified(problem.primal, vector(0), vector(3), vector(6),
+                                           lane[9][k], lane[10][k]);
+    lane[11][k] = ball ? T(1) : T(0);
+  }
+  return hn::Gt(hn::LoadU(d, lane[11]), hn::Zero(d));
+}
+
 /// The inside pass on one vector of lanes at i.
 template <class D>
 void SolveInsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
@@ -570,7 +617,7 @@ void SolveInsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
   const Vec3<D> y = LoadVec3(d, lanes.query, i);
   LaneSolver<D> solver(d, problem, y, T(-1));
   V gauge;
-  const Candidate<D> radial = solver.candidateOnRay(y, &gauge);
+  const Candidate<D> radial = RadialStart(d, solver, y, lanes, i, &gauge);
 
   // What only the scalar solver does: deep inside (g < 0.5: the centre's candidates), and on
   // or near a coordinate plane (tilted starts).
@@ -586,47 +633,60 @@ void SolveInsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
 
   M all_converged;
   Candidate<D> best = solver.refine(radial, work, &all_converged);
-  // Lanes whose answer is already certified global need no further start
-  // (exact_rules::certifiedGlobal, lane-wise: d + tolerance ≤ the rolling radius).
-  const auto certified = [&](const Candidate<D>& c, M converged) {
+  // Lanes whose answer is already certified global need no further start: the rolling ball
+  // (exact_rules::certifiedGlobal, lane-wise: d + tolerance ≤ the rolling radius), else the
+  // Hessian ball (ball_certificate.h), lane by lane through the scalar solver's own function.
+  const NormLanes<D> primal(d, problem.primal);
+  // `fresh`: the lanes whose candidate is new since the last check (the Hessian ball is tested
+  // once per candidate, as in ExactSolver::searchInside).
+  const auto certified = [&](const Candidate<D>& c, M converged, M fresh) {
     const Vec3<D> to_c = Minus(y, c.point);
-    const V reach = hn::Add(hn::Sqrt(Dot(to_c, to_c)), solver.tolerance());
-    return hn::And(converged, hn::Le(reach, hn::Set(d, problem.rolling_radius)));
+    const V distance = hn::Sqrt(Dot(to_c, to_c));
+    const V reach = hn::Add(distance, solver.tolerance());
+    const M rolling = hn::And(converged, hn::Le(reach, hn::Set(d, problem.rolling_radius)));
+    const M open = hn::And(fresh, hn::AndNot(rolling, converged));
+    if (hn::AllFalse(d, open)) return rolling;
+    return hn::Or(rolling,
+                  hn::And(open, HessianBallLanes(d, problem, primal, y, c, distance, open)));
   };
-  M done = certified(best, all_converged);
+  M done = certified(best, all_converged, work);
   M more = hn::AndNot(done, work);
   // The three axis projections (ExactSolver::axisProjections): move one coordinate of Q
-  // outward until G = 1, in the primal's scaled coordinates u = y/a.
-  const NestedNorm<T>& g = problem.primal;
-  const V s0 = hn::Set(d, g.scale[0]), s1 = hn::Set(d, g.scale[1]), s2 = hn::Set(d, g.scale[2]);
-  const V p1 = hn::Set(d, g.p1), p2 = hn::Set(d, g.p2);
-  const V inv_p1 = hn::Set(d, g.inv_p1), inv_p2 = hn::Set(d, g.inv_p2);
-  auto complement = [&](V t, V p, V inv_p) {  // s with ‖(t, s)‖_p = 1, t ≤ 1
-    return Pow(d, hn::Max(zero, hn::Sub(one, Pow(d, t, p))), inv_p);
-  };
-  const V u0 = hn::Mul(y.x, s0), u1 = hn::Mul(y.y, s1), u2 = hn::Mul(y.z, s2);
-  const V r = PNorm2WithPowers(d, u0, u1, p1, inv_p1, hn::Sub(p1, one)).norm;
-  const V r_target = complement(u2, p2, inv_p2);
-  const V safe_target = hn::IfThenElse(hn::Gt(r_target, zero), r_target, one);
-  auto move = [&](V other, V own) {
-    return hn::IfThenElse(hn::Lt(other, r_target),
-                          hn::Mul(r_target, complement(hn::Div(other, safe_target), p1, inv_p1)),
-                          own);
-  };
-  const Vec3<D> starts[3] = {{hn::Div(move(u1, u0), s0), y.y, y.z},
-                             {y.x, hn::Div(move(u0, u1), s1), y.z},
-                             {y.x, y.y, hn::Div(complement(hn::Min(r, one), p2, inv_p2), s2)}};
-  for (const Vec3<D>& start : starts) {
-    if (hn::AllFalse(d, more)) break;
-    M converged;
-    const Candidate<D> c = solver.refine(solver.candidateOnRay(start), more, &converged);
-    all_converged = hn::And(all_converged, hn::Or(converged, done));
-    // ExactSolver::isBetter between converged candidates: strictly nearer wins.
-    const Vec3<D> to_c = Minus(y, c.point), to_best = Minus(y, best.point);
-    best = Select(hn::And(converged, hn::Lt(Dot(to_c, to_c), Dot(to_best, to_best))), c, best);
-    const M now_done = certified(best, hn::And(more, all_converged));
-    done = hn::Or(done, now_done);
-    more = hn::AndNot(now_done, more);
+  // outward until G = 1, in the primal's scaled coordinates u = y/a. (Their powers only where a
+  // lane still needs them: the first start is certified on most shallow lanes.)
+  if (!hn::AllFalse(d, more)) {
+    const NestedNorm<T>& g = problem.primal;
+    const V s0 = hn::Set(d, g.scale[0]), s1 = hn::Set(d, g.scale[1]), s2 = hn::Set(d, g.scale[2]);
+    const V p1 = hn::Set(d, g.p1), p2 = hn::Set(d, g.p2);
+    const V inv_p1 = hn::Set(d, g.inv_p1), inv_p2 = hn::Set(d, g.inv_p2);
+    auto complement = [&](V t, V p, V inv_p) {  // s with ‖(t, s)‖_p = 1, t ≤ 1
+      return Pow(d, hn::Max(zero, hn::Sub(one, Pow(d, t, p))), inv_p);
+    };
+    const V u0 = hn::Mul(y.x, s0), u1 = hn::Mul(y.y, s1), u2 = hn::Mul(y.z, s2);
+    const V r = PNorm2WithPowers(d, u0, u1, p1, inv_p1, hn::Sub(p1, one)).norm;
+    const V r_target = complement(u2, p2, inv_p2);
+    const V safe_target = hn::IfThenElse(hn::Gt(r_target, zero), r_target, one);
+    auto move = [&](V other, V own) {
+      return hn::IfThenElse(hn::Lt(other, r_target),
+                            hn::Mul(r_target, complement(hn::Div(other, safe_target), p1, inv_p1)),
+                            own);
+    };
+    const Vec3<D> starts[3] = {{hn::Div(move(u1, u0), s0), y.y, y.z},
+                               {y.x, hn::Div(move(u0, u1), s1), y.z},
+                               {y.x, y.y, hn::Div(complement(hn::Min(r, one), p2, inv_p2), s2)}};
+    for (const Vec3<D>& start : starts) {
+      if (hn::AllFalse(d, more)) break;
+      M converged;
+      const Candidate<D> c = solver.refine(solver.candidateOnRay(start), more, &converged);
+      all_converged = hn::And(all_converged, hn::Or(converged, done));
+      // ExactSolver::isBetter between converged candidates: strictly nearer wins.
+      const Vec3<D> to_c = Minus(y, c.point), to_best = Minus(y, best.point);
+      const M nearer = hn::And(converged, hn::Lt(Dot(to_c, to_c), Dot(to_best, to_best)));
+      best = Select(nearer, c, best);
+      const M now_done = certified(best, hn::And(more, all_converged), nearer);
+      done = hn::Or(done, now_done);
+      more = hn::AndNot(now_done, more);
+    }
   }
 
   // Deep in an elongated shape the scalar solver adds the cross-sections' diagonal starts:
@@ -637,32 +697,61 @@ void SolveInsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
   // (of every cross-section's radii: the smallest radius is a lower bound on all of them)
   const T quarter_min = T(rules::kDiagonalStartDepth) * std::min({a0, a1, a2});
   const M deep = hn::AndNot(done, hn::Gt(best_distance, hn::Set(d, quarter_min)));
-  const M over_budget = hn::Gt(solver.iterations(), hn::Set(d, T(problem.max_iterations)));
+  // A lane that reached the caller's cap goes back too: the scalar solver counts its second-order
+  // corrections as iterations (exact_rules::kStepTrials), so under a tight cap it may stop where
+  // the lane, certified after fewer iterations, would have answered.
+  const M over_budget = hn::Ge(solver.iterations(), hn::Set(d, T(problem.max_iterations)));
   const M solved = hn::AndNot(hn::Or(deep, over_budget), hn::And(work, all_converged));
   StoreAnswer(d, best, solved, hn::MaskFromVec(zero), lanes, i);
 }
 
+/// The classifying pass on one vector of lanes at i: G(Q) < 1, and the gauge's evaluation at Q
+/// stored for the passes' radial start.
+template <class D>
+void ClassifyVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
+                    const LaneArrays<hn::TFromD<D>>& lanes, std::size_t i) {
+  using T = hn::TFromD<D>;
+  const NormEval<D> e = Evaluate(d, NormLanes<D>(d, problem.primal), LoadVec3(d, lanes.query, i));
+  const hn::Vec<D> values[LaneArrays<T>::kRadialArrays] = {
+      e.value,      e.gradient.x, e.gradient.y, e.gradient.z, e.hessian.xx,
+      e.hessian.xy, e.hessian.xz, e.hessian.yy, e.hessian.yz, e.hessian.zz};
+  for (int k = 0; k < LaneArrays<T>::kRadialArrays; ++k) {
+    hn::StoreU(values[k], d, lanes.radial[k] + i);
+  }
+  const hn::Vec<D> code =
+      hn::IfThenElse(hn::Lt(e.value, hn::Set(d, T(1))), hn::Set(d, T(kLaneInside)), hn::Zero(d));
+  HWY_ALIGN T codes[kMaxLanes];
+  hn::Store(code, d, codes);
+  for (std::size_t k = 0; k < hn::Lanes(d); ++k) lanes.status[i + k] = std::int32_t(codes[k]);
+}
+
 template <typename T>
 void SolveLanes(const LaneProblem<T>& problem, const LaneArrays<T>& lanes, std::size_t n,
-                bool inside_pass) {
+                LanePass pass) {
   const hn::ScalableTag<T> d;
   const std::size_t step = hn::Lanes(d);
   for (std::size_t i = 0; i < n; i += step) {
-    if (inside_pass) {
-      SolveInsideVector(d, problem, lanes, i);
-    } else {
-      SolveOutsideVector(d, problem, lanes, i);
+    switch (pass) {
+      case LanePass::kClassify:
+        ClassifyVector(d, problem, lanes, i);
+        break;
+      case LanePass::kOutside:
+        SolveOutsideVector(d, problem, lanes, i);
+        break;
+      case LanePass::kInside:
+        SolveInsideVector(d, problem, lanes, i);
+        break;
     }
   }
 }
 
 void SolveLanesFloat(const LaneProblem<float>& problem, const LaneArrays<float>& lanes,
-                     std::size_t n, bool inside_pass) {
-  SolveLanes(problem, lanes, n, inside_pass);
+                     std::size_t n, LanePass pass) {
+  SolveLanes(problem, lanes, n, pass);
 }
 void SolveLanesDouble(const LaneProblem<double>& problem, const LaneArrays<double>& lanes,
-                      std::size_t n, bool inside_pass) {
-  SolveLanes(problem, lanes, n, inside_pass);
+                      std::size_t n, LanePass pass) {
+  SolveLanes(problem, lanes, n, pass);
 }
 
 }  // namespace HWY_NAMESPACE
@@ -678,12 +767,12 @@ HWY_EXPORT(SolveLanesFloat);
 HWY_EXPORT(SolveLanesDouble);
 
 void solveLanes(const LaneProblem<float>& problem, const LaneArrays<float>& lanes, std::size_t n,
-                bool inside_pass) {
-  HWY_DYNAMIC_DISPATCH(SolveLanesFloat)(problem, lanes, n, inside_pass);
+                LanePass pass) {
+  HWY_DYNAMIC_DISPATCH(SolveLanesFloat)(problem, lanes, n, pass);
 }
 void solveLanes(const LaneProblem<double>& problem, const LaneArrays<double>& lanes, std::size_t n,
-                bool inside_pass) {
-  HWY_DYNAMIC_DISPATCH(SolveLanesDouble)(problem, lanes, n, inside_pass);
+                LanePass pass) {
+  HWY_DYNAMIC_DISPATCH(SolveLanesDouble)(problem, lanes, n, pass);
 }
 
 std::vector<std::pair<std::int64_t, std::string>> simdTargetsOfThisCpu() {

@@ -11,15 +11,17 @@
 //    ε ≥ 1: primalIsSmoother in solvers.h) and, where it stalls, in the other (ExactSolver::
 //    refine), from the caller's warm start, if any, else from the radial projection. Outside the
 //    problem is convex, so a start that converges gives the scalar solver's answer to the
-//    tolerance. Lanes found inside are marked kLaneInside.
+//    tolerance. Lanes found inside are marked kLaneInside (the caller sorts lanes by a
+//    classifying pass first, so that these are rare).
 //  - inside pass: Newton from the radial projection and the three axis projections (the
 //    scalar solver's first four starts), the latter only on lanes whose answer is not yet
-//    certified global (exact_rules::certifiedGlobal); the nearest converged answer wins.
+//    certified global (the rolling ball, exact_rules::certifiedGlobal, on the lanes; else the
+//    Hessian ball, solvers/ball_certificate.h, lane by lane); the nearest converged answer wins.
 // A lane goes back to the scalar solver (kLaneScalar) whenever the scalar solver would do
 // more than that: a start that converges in neither formulation (the scalar solver then tries
 // further starts and, outside, the bracketed projection), an inside query near a coordinate plane
 // (tilted starts), deep inside (the centre's candidates, and the cross-section diagonals of
-// elongated shapes), the exact centre, or an iteration count over the caller's cap.
+// elongated shapes), the exact centre, or an iteration count over the caller's cap (inside: at it).
 //
 // Powers are exp(p·log x) with Highway's vectorised exp/log (≤ 4 ulp). Every power the solver
 // takes is of a ratio t ∈ [0, 1] inside a p-norm m·(1 + t^p)^(1/p): an error δ in t^p moves the
@@ -65,15 +67,27 @@ struct LaneArrays {
   S* normal[3];       // out: the unit outward normal there
   S* error;           // out: paper Eq. 7 error of the answer
   std::int32_t* status;
+  /// The gauge's evaluation at Q, written by the classifying pass, from which the others build
+  /// their radial start (the query's own ray onto the surface): G(Q), ∇G (3), ∇²G (xx, xy, xz,
+  /// yy, yz, zz).
+  static constexpr int kRadialArrays = 10;
+  S* radial[kRadialArrays];
 };
 
+/// The kernel's passes. kClassify sets each lane's status, kLaneInside where G(Q) < 1 (the
+/// outside pass's own test) and kLaneSolved elsewhere, so that the caller can give each pass
+/// whole vectors of its own lanes (a vector's Newton runs as long as its slowest lane); it also
+/// keeps the gauge's evaluation at Q, from which both passes build their first start
+/// (LaneArrays::radial).
+enum class LanePass { kClassify, kOutside, kInside };
+
 /// Runs the pass on lanes [0, n) with the best instruction set of this CPU (Highway dynamic
-/// dispatch). Lanes of the inside pass must be inside the shape (kLaneInside from the outside
-/// pass).
+/// dispatch). The outside and inside passes read what the classifying pass wrote for their
+/// lanes; lanes of the inside pass must be inside the shape (kLaneInside).
 void solveLanes(const LaneProblem<float>& problem, const LaneArrays<float>& lanes, std::size_t n,
-                bool inside_pass);
+                LanePass pass);
 void solveLanes(const LaneProblem<double>& problem, const LaneArrays<double>& lanes, std::size_t n,
-                bool inside_pass);
+                LanePass pass);
 
 }  // namespace detail
 }  // namespace fcl_superellipsoid

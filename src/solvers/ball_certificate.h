@@ -28,22 +28,45 @@
 // Over a box [lo, hi] of the first octant every quantity is monotone in each coordinate (the
 // norms grow with every argument; a ratio grows with its own argument and falls with the
 // other), so each is bounded by evaluating it at the box's corners, and each power by the end
-// of its range that makes it largest. A box that reaches a coordinate plane where p < 2 (a
-// crease, ε > 1) gives an infinite bound: not certified.
+// of its range that makes it largest.
+//
+// A box that reaches a coordinate plane whose level has p < 2 (a crease, ε > 1) has no finite
+// bound: there (t1·t2)^(p1−2) grows like x^(p1−2) (or y, or z^(p2−2) for the outer level). That
+// power is integrable along a segment (p − 2 > −1), so the bound is split instead,
+//   ‖∇²G(P)‖ ≤ M0 + cx·Px^(p1−2) + cy·Py^(p1−2) + cz·Pz^(p2−2),
+// with t1 ≥ s1·x/r_max (so t1^(p1−2) ≤ (s1/r_max)^(p1−2)·x^(p1−2)) and likewise t3, and
+// Taylor's theorem with the integral remainder replaces ½·M·‖P − N‖²:
+//   G(P) ≤ 1 + ∇G(N)·(P − N) + ‖P − N‖²·∫₀¹ (1 − t)·‖∇²G(N + t·(P − N))‖ dt.
+// For a segment from N to a point P of the octant (Px ≥ 0) and k = p − 2 ∈ (−1, 0),
+// ∫₀¹ (1 − t)·(Nx + t·(Px − Nx))^k dt is largest at Px = 0, where it is Nx^k/(2 + k). So the
+// certificate holds with M = M0 + 2·Σ c_i·N_i^(k_i)/(2 + k_i): N itself must stay off the
+// crease, the ball may cross it. (A box reaching the z axis, where r → 0, is not certified.)
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "shape/nested_norm.h"
 
 namespace fcl_superellipsoid {
 namespace detail {
 
-/// An upper bound of ‖∇²G‖ (spectral norm) over the box [lo, hi] of the first octant
-/// (0 ≤ lo ≤ hi), for the gauge G of `gauge`; +∞ or NaN where none is finite.
+/// An upper bound of ‖∇²G‖ (spectral norm) over a box of the first octant: at a point P of the
+/// box, regular + crease[0]·Px^(p1−2) + crease[1]·Py^(p1−2) + crease[2]·Pz^(p2−2). A crease
+/// coefficient is non-zero only where the box reaches that plane of a crease (p < 2).
 template <typename S>
-S hessianNormBound(const NestedNorm<S>& gauge, const Vector3<S>& lo, const Vector3<S>& hi) {
+struct HessianBound {
+  S regular = S(0);
+  Vector3<S> crease = Vector3<S>::Zero();
+};
+
+/// The bound above for the box [lo, hi] (0 ≤ lo ≤ hi) and the gauge G of `gauge`; its regular
+/// part is +∞ or NaN where none is finite (a box reaching the z axis).
+template <typename S>
+HessianBound<S> hessianNormBound(const NestedNorm<S>& gauge, const Vector3<S>& lo,
+                                 const Vector3<S>& hi) {
   const S p1 = gauge.p1, p2 = gauge.p2;
+  const S k1 = p1 - S(2), k2 = p2 - S(2);
   const Vector3<S> ul = lo.cwiseProduct(gauge.scale), uh = hi.cwiseProduct(gauge.scale);
   auto n1 = [&](S a, S b) { return pnorm2(a, b, p1, gauge.inv_p1); };
   auto n2 = [&](S a, S b) { return pnorm2(a, b, p2, gauge.inv_p2); };
@@ -52,47 +75,68 @@ S hessianNormBound(const NestedNorm<S>& gauge, const Vector3<S>& lo, const Vecto
     return k >= S(0) ? std::pow(t_hi, k) : std::pow(t_lo, k);
   };
   const S one = S(1);
+  HessianBound<S> bound;
+  if (ul[0] == S(0) && ul[1] == S(0)) {
+    bound.regular = std::numeric_limits<S>::infinity();
+    return bound;
+  }
   // The first level: r and the ratios t1, t2.
   const S r_lo = n1(ul[0], ul[1]), r_hi = n1(uh[0], uh[1]);
   const S r_12 = n1(ul[0], uh[1]), r_21 = n1(uh[0], ul[1]);  // mixed corners
   const S t1_lo = ul[0] / r_12, t1_hi = std::min(one, uh[0] / r_21);
   const S t2_lo = ul[1] / r_21, t2_hi = std::min(one, uh[1] / r_12);
   // The second level: G and the ratios tr, t3.
-  const S g_lo = n2(r_lo, ul[2]);
+  const S g_lo = n2(r_lo, ul[2]), g_hi = n2(r_hi, uh[2]);
   const S g_r3 = n2(r_lo, uh[2]), g_3r = n2(r_hi, ul[2]);  // mixed corners
   const S tr_lo = r_lo / g_r3, tr_hi = std::min(one, r_hi / g_3r);
   const S t3_lo = ul[2] / g_3r, t3_hi = std::min(one, uh[2] / g_r3);
   const S s1 = gauge.scale[0] * gauge.scale[0], s2 = gauge.scale[1] * gauge.scale[1];
   const S s3 = gauge.scale[2] * gauge.scale[2];
-  const S first = power(tr_lo, tr_hi, p2 - one) * (p1 - one) / r_lo *
-                  power(t1_lo * t2_lo, t1_hi * t2_hi, p1 - S(2)) *
-                  (s1 * t2_hi * t2_hi + s2 * t1_hi * t1_hi);
-  const S second = (p2 - one) / g_lo * power(tr_lo * t3_lo, tr_hi * t3_hi, p2 - S(2)) *
+  // The first rank-one term: factor · (t1·t2)^k1.
+  const S first =
+      power(tr_lo, tr_hi, p2 - one) * (p1 - one) / r_lo * (s1 * t2_hi * t2_hi + s2 * t1_hi * t1_hi);
+  if (k1 < S(0) && ul[0] == S(0)) {  // t1 ≥ s1·x/r_hi
+    bound.crease[0] = first * std::pow(gauge.scale[0] / r_hi, k1) * std::pow(t2_lo, k1);
+  } else if (k1 < S(0) && ul[1] == S(0)) {
+    bound.crease[1] = first * std::pow(gauge.scale[1] / r_hi, k1) * std::pow(t1_lo, k1);
+  } else {
+    bound.regular += first * power(t1_lo * t2_lo, t1_hi * t2_hi, k1);
+  }
+  // The second: factor · (tr·t3)^k2.
+  const S second = (p2 - one) / g_lo *
                    (t3_hi * t3_hi *
                         (s1 * power(t1_lo, t1_hi, S(2) * p1 - S(2)) +
                          s2 * power(t2_lo, t2_hi, S(2) * p1 - S(2))) +
                     tr_hi * tr_hi * s3);
-  return first + second;
+  if (k2 < S(0) && ul[2] == S(0)) {  // t3 ≥ s3·z/g_hi
+    bound.crease[2] = second * std::pow(gauge.scale[2] / g_hi, k2) * std::pow(tr_lo, k2);
+  } else {
+    bound.regular += second * power(tr_lo * t3_lo, tr_hi * t3_hi, k2);
+  }
+  return bound;
 }
 
 /// The certificate above for a converged inside answer, in the first octant: Q (y), its
 /// nearest point N (on the surface) with the gauge's gradient there, the distance d = ‖Q − N‖
 /// and Eq. 7's error. The ball B(Q', d) lies within d + error of Q; its box is clamped to the
-/// octant (the gauge is mirror-symmetric, so a box reaching across a plane is bounded by its
-/// folded part, and the closed form is infinite there exactly where G is not C²). The bound is
-/// exact in real arithmetic; a 1 % margin covers its rounding.
+/// octant (the gauge is mirror-symmetric, so a ball reaching across a plane is inside the shape
+/// if its part in the octant is: the rest mirrors into it). The bound is exact in real
+/// arithmetic; a 1 % margin covers its rounding.
 template <typename S>
 bool hessianBallCertified(const NestedNorm<S>& gauge, const Vector3<S>& y,
-                          const Vector3<S>& gradient_at_n, S distance, S error) {
+                          const Vector3<S>& nearest, const Vector3<S>& gradient_at_n, S distance,
+                          S error) {
   const S reach = distance + error;
   const Vector3<S> lo = (y.array() - reach).max(S(0)).matrix();
   const Vector3<S> hi = (y.array() + reach).matrix();
-  // Where the box reaches a crease (a plane whose level has p < 2) or the z axis the bound is
-  // infinite: decided here without its pow() calls.
-  const bool crease_xy = gauge.p1 < S(2) && (lo[0] == S(0) || lo[1] == S(0));
-  const bool crease_z = gauge.p2 < S(2) && lo[2] == S(0);
-  if (crease_xy || crease_z || (lo[0] == S(0) && lo[1] == S(0))) return false;
-  const S m = hessianNormBound(gauge, lo, hi);
+  if (lo[0] == S(0) && lo[1] == S(0)) return false;  // the z axis: decided without pow()
+  const HessianBound<S> bound = hessianNormBound(gauge, lo, hi);
+  S m = bound.regular;
+  for (int i = 0; i < 3; ++i) {
+    if (bound.crease[i] == S(0)) continue;
+    const S k = (i < 2 ? gauge.p1 : gauge.p2) - S(2);
+    m += S(2) * bound.crease[i] * std::pow(nearest[i], k) / (S(2) + k);  // ∞ at N on the crease
+  }
   return S(1.01) * m * distance <= gradient_at_n.norm();
 }
 

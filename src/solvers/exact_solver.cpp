@@ -132,7 +132,7 @@ class ExactSolver {
       if (rules::certifiedGlobal(distance, q_.tolerance, rolling_radius)) return true;
       if (best->point == checked) return false;
       checked = best->point;
-      return hessianBallCertified(primal_, y_, best->gradient, distance, best->error);
+      return hessianBallCertified(primal_, y_, best->point, best->gradient, distance, best->error);
     };
     if (certified()) return;
     for (const Vector3<S>& start : axisProjections()) {

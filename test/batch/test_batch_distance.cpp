@@ -279,6 +279,37 @@ TYPED_TEST(BatchDistanceTest, EveryInstructionSetGivesTheSameAnswers) {
   detail::restrictSimdTargets(0);
 }
 
+// Within one chunk the SIMD path solves the outside vertices, then the inside ones, and hands
+// the near-centre and far ones to the scalar solver: the contacts still come in index order.
+TYPED_TEST(BatchDistanceTest, ContactsComeInIndexOrderWhicheverPathAnswers) {
+  using S = TypeParam;
+  const Superellipsoid<S> shape{S(1), S(2), S(1.5), S(0.7), S(1.3)};
+  const S far = S(4) * shape.size() / std::numeric_limits<S>::epsilon();
+  const S near_centre = shape.size() * std::numeric_limits<S>::epsilon() / S(8);
+  Matrix3X<S> p_WV(3, 9);
+  p_WV << S(0.2), S(1.5), near_centre, S(0.1), far, S(0.9), S(0), S(0.3), S(-2),  //
+      S(0.1), S(0.3), S(0), S(2.2), S(0), S(0.2), S(0.1), S(0.2), S(0.5),         //
+      S(0.3), S(0.2), S(0), S(0.1), S(0), S(0.1), S(1.4), S(0.2), S(0.4);
+  BatchOptions<S> options;
+  BatchStatistics statistics;
+  options.statistics = &statistics;
+  const std::vector<VertexContact<S>> contacts =
+      verticesWithinMargin(shape, fcl::Transform3<S>::Identity(), p_WV, S(2) * far, options);
+  ASSERT_EQ(contacts.size(), std::size_t(p_WV.cols()));
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    EXPECT_EQ(contacts[k].index, Eigen::Index(k));
+    const auto r = pointDistance(shape, Vector3<S>(p_WV.col(Eigen::Index(k))));
+    EXPECT_NEAR(contacts[k].distance, r.distance, S(100) * test::evalTolerance<S>() * far)
+        << "vertex " << k;
+  }
+  EXPECT_GE(statistics.scalar, 2u);  // the near-centre and the far vertex (and deep ones)
+  EXPECT_GE(statistics.simd, 4u);    // shallow inside and outside ones on the lanes
+  const auto inside = std::count_if(contacts.begin(), contacts.end(),
+                                    [](const VertexContact<S>& c) { return c.distance < 0; });
+  EXPECT_GE(inside, 3);
+  EXPECT_GE(contacts.size() - std::size_t(inside), 3u);
+}
+
 TYPED_TEST(BatchDistanceTest, CompactsExactlyTheVerticesWithinTheMargin) {
   using S = TypeParam;
   std::mt19937 rng(2);
