@@ -11,6 +11,8 @@
 #include <fcl/narrowphase/distance_request.h>
 #include <fcl/narrowphase/distance_result.h>
 
+#include <typeinfo>
+
 #include "fcl_superellipsoid/superellipsoid.h"
 
 namespace fcl_superellipsoid {
@@ -19,10 +21,14 @@ namespace detail {
 /// g as FCL's geometry class T, or nullptr: its node type must be `type` and its dynamic type T
 /// (a user's geometry may report any node type). The node type is read first because a
 /// dynamic_cast that fails compares type names with strcmp across shared libraries: a chain of
-/// failing casts cost more than a halfspace pair's own arithmetic.
+/// failing casts cost more than a halfspace pair's own arithmetic. The exact type is checked
+/// before the cast for the same reason (one comparison of type_info objects where a successful
+/// dynamic_cast walks the class hierarchy); a subclass of T still gets the dynamic_cast.
 template <typename T, typename S>
 const T* geometryAs(const fcl::CollisionGeometry<S>* g, fcl::NODE_TYPE type) {
-  return g->getNodeType() == type ? dynamic_cast<const T*>(g) : nullptr;
+  if (g->getNodeType() != type) return nullptr;
+  if (typeid(*g) == typeid(T)) return static_cast<const T*>(g);
+  return dynamic_cast<const T*>(g);
 }
 
 /// g as a Superellipsoid (node type BV_UNKNOWN), or nullptr.

@@ -89,33 +89,60 @@ void checkOther(const char* where, const fcl::CollisionGeometry<S>* other) {
           p);
     }
   };
-  if (const auto* x = geometryAs<fcl::Sphere<S>>(other, fcl::GEOM_SPHERE)) {
-    length("radius", x->radius);
-  } else if (const auto* x = geometryAs<fcl::Ellipsoid<S>>(other, fcl::GEOM_ELLIPSOID)) {
-    for (int i = 0; i < 3; ++i) length("radii", x->radii[i]);
-  } else if (const auto* x = geometryAs<fcl::Box<S>>(other, fcl::GEOM_BOX)) {
-    for (int i = 0; i < 3; ++i) length("side", x->side[i]);
-  } else if (const auto* x = geometryAs<fcl::Capsule<S>>(other, fcl::GEOM_CAPSULE)) {
-    length("radius", x->radius);
-    length("lz", x->lz);
-  } else if (const auto* x = geometryAs<fcl::Cylinder<S>>(other, fcl::GEOM_CYLINDER)) {
-    length("radius", x->radius);
-    length("lz", x->lz);
-  } else if (const auto* x = geometryAs<fcl::Cone<S>>(other, fcl::GEOM_CONE)) {
-    length("radius", x->radius);
-    length("lz", x->lz);
-  } else if (const auto* x = geometryAs<fcl::Halfspace<S>>(other, fcl::GEOM_HALFSPACE)) {
-    point("normal n", x->n);
-    length("|d|", std::abs(x->d));
-  } else if (const auto* x = geometryAs<fcl::Plane<S>>(other, fcl::GEOM_PLANE)) {
-    point("normal n", x->n);
-    length("|d|", std::abs(x->d));
-  } else if (const auto* x = geometryAs<fcl::Convex<S>>(other, fcl::GEOM_CONVEX)) {
-    for (const Vector3<S>& v : x->getVertices()) point("vertex", v);
-  } else if (const auto* x = geometryAs<fcl::TriangleP<S>>(other, fcl::GEOM_TRIANGLE)) {
-    point("vertex a", x->a);
-    point("vertex b", x->b);
-    point("vertex c", x->c);
+  auto round = [&](const auto& x) {  // capsule, cylinder, cone
+    length("radius", x.radius);
+    length("lz", x.lz);
+  };
+  auto plane = [&](const auto& x) {  // halfspace, plane
+    point("normal n", x.n);
+    length("|d|", std::abs(x.d));
+  };
+  // One virtual call picks the kind (a chain of geometryAs calls costs one per kind tried).
+  switch (other->getNodeType()) {
+    case fcl::GEOM_SPHERE:
+      if (const auto* x = geometryAs<fcl::Sphere<S>>(other, fcl::GEOM_SPHERE)) {
+        length("radius", x->radius);
+      }
+      break;
+    case fcl::GEOM_ELLIPSOID:
+      if (const auto* x = geometryAs<fcl::Ellipsoid<S>>(other, fcl::GEOM_ELLIPSOID)) {
+        for (int i = 0; i < 3; ++i) length("radii", x->radii[i]);
+      }
+      break;
+    case fcl::GEOM_BOX:
+      if (const auto* x = geometryAs<fcl::Box<S>>(other, fcl::GEOM_BOX)) {
+        for (int i = 0; i < 3; ++i) length("side", x->side[i]);
+      }
+      break;
+    case fcl::GEOM_CAPSULE:
+      if (const auto* x = geometryAs<fcl::Capsule<S>>(other, fcl::GEOM_CAPSULE)) round(*x);
+      break;
+    case fcl::GEOM_CYLINDER:
+      if (const auto* x = geometryAs<fcl::Cylinder<S>>(other, fcl::GEOM_CYLINDER)) round(*x);
+      break;
+    case fcl::GEOM_CONE:
+      if (const auto* x = geometryAs<fcl::Cone<S>>(other, fcl::GEOM_CONE)) round(*x);
+      break;
+    case fcl::GEOM_HALFSPACE:
+      if (const auto* x = geometryAs<fcl::Halfspace<S>>(other, fcl::GEOM_HALFSPACE)) plane(*x);
+      break;
+    case fcl::GEOM_PLANE:
+      if (const auto* x = geometryAs<fcl::Plane<S>>(other, fcl::GEOM_PLANE)) plane(*x);
+      break;
+    case fcl::GEOM_CONVEX:
+      if (const auto* x = geometryAs<fcl::Convex<S>>(other, fcl::GEOM_CONVEX)) {
+        for (const Vector3<S>& v : x->getVertices()) point("vertex", v);
+      }
+      break;
+    case fcl::GEOM_TRIANGLE:
+      if (const auto* x = geometryAs<fcl::TriangleP<S>>(other, fcl::GEOM_TRIANGLE)) {
+        point("vertex a", x->a);
+        point("vertex b", x->b);
+        point("vertex c", x->c);
+      }
+      break;
+    default:
+      break;
   }
 }
 
