@@ -17,7 +17,7 @@
 // Then B(Q', d) lies inside the shape, every surface point is at least d from Q' and at least
 // d − ‖Q − Q'‖ from Q: N is the global answer up to the error it already carries. Unlike the
 // rolling-ball certificate it needs no global curvature bound, only one over the small ball,
-// so it also holds on creased shapes (ε > 1) away from their creases, where ∇²G is unbounded.
+// so it also holds on creased shapes (ε > 1), where ∇²G is unbounded near the creases (below).
 //
 // M comes from a closed form. For a 2-argument p-norm N(a, b) with ratios ta = a/N, tb = b/N,
 //   ∇²N = (p − 1)/N · (ta·tb)^(p−2) · (tb, −ta)(tb, −ta)ᵀ,
