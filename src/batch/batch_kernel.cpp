@@ -255,12 +255,13 @@ class LaneSolver {
   /// The absolute tolerance per lane (exact_rules::absoluteTolerance).
   V tolerance() const { return tolerance_; }
 
-  /// ExactSolver::candidateOnRay; `gauge` gets G(ray).
-  Candidate<D> candidateOnRay(const Vec3<D>& ray, V* gauge = nullptr) const {
-    const NormEval<D> e = Evaluate(d_, primal_, ray);
-    if (gauge != nullptr) *gauge = e.value;
-    return candidateFrom(ray, e);
+  /// ExactSolver::candidateOnRay.
+  Candidate<D> candidateOnRay(const Vec3<D>& ray) const {
+    return candidateFrom(ray, Evaluate(d_, primal_, ray));
   }
+
+  /// The primal's ∇G at `point`.
+  Vec3<D> gradientAt(const Vec3<D>& point) const { return Evaluate(d_, primal_, point).gradient; }
 
   /// The same from the gauge's evaluation `e` at `ray`.
   Candidate<D> candidateFrom(const Vec3<D>& ray, const NormEval<D>& e) const {
@@ -583,11 +584,11 @@ void SolveOutsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
 /// the queries `y`.
 template <class D>
 hn::Mask<D> HessianBallLanes(D d, const LaneProblem<hn::TFromD<D>>& problem,
-                             const NormLanes<D>& primal, const Vec3<D>& y, const Candidate<D>& c,
+                             const LaneSolver<D>& solver, const Vec3<D>& y, const Candidate<D>& c,
                              hn::Vec<D> distance, hn::Mask<D> lanes) {
   using T = hn::TFromD<D>;
   // The gradient afresh: after dual iterations a candidate's gradient is its start's.
-  const Vec3<D> gradient = Evaluate(d, primal, c.point).gradient;
+  const Vec3<D> gradient = solver.gradientAt(c.point);
   T lane[12][kMaxLanes];
   const hn::Vec<D> values[12] = {
       y.x,        y.y,       y.z,        c.point.x,
@@ -636,7 +637,6 @@ void SolveInsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
   // Lanes whose answer is already certified global need no further start: the rolling ball
   // (exact_rules::certifiedGlobal, lane-wise: d + tolerance ≤ the rolling radius), else the
   // Hessian ball (ball_certificate.h), lane by lane through the scalar solver's own function.
-  const NormLanes<D> primal(d, problem.primal);
   // `fresh`: the lanes whose candidate is new since the last check (the Hessian ball is tested
   // once per candidate, as in ExactSolver::searchInside).
   const auto certified = [&](const Candidate<D>& c, M converged, M fresh) {
@@ -647,7 +647,7 @@ void SolveInsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
     const M open = hn::And(fresh, hn::AndNot(rolling, converged));
     if (hn::AllFalse(d, open)) return rolling;
     return hn::Or(rolling,
-                  hn::And(open, HessianBallLanes(d, problem, primal, y, c, distance, open)));
+                  hn::And(open, HessianBallLanes(d, problem, solver, y, c, distance, open)));
   };
   M done = certified(best, all_converged, work);
   M more = hn::AndNot(done, work);
