@@ -27,17 +27,27 @@ bool withinCoordinateRange(const Derived& v) {
   return (v.array().abs() <= maxCoordinate<S>()).all();
 }
 
+/// The error checkPose throws, out of line: the message's string building stays off the
+/// callers' path (it once cost a pair query 10 % of its time in stack set-up alone).
+template <typename S>
+[[noreturn, gnu::cold, gnu::noinline]] void throwBadPose(
+    const char* where, const char* name, const Eigen::Matrix<S, 3, 1>& translation) {
+  throwInvalidArgument(where,
+                       std::string("the pose ") + name +
+                           " must be finite, its translation at most " +
+                           formatValue(maxCoordinate<S>()) + " in magnitude",
+                       translation);
+}
+
 /// Refuses a pose that is not finite or whose translation is beyond maxCoordinate():
 /// "<where>: the pose <name> must be finite, its translation at most ..., got (x, y, z)".
 template <typename S>
 void checkPose(const char* where, const char* name,
                const Eigen::Transform<S, 3, Eigen::Isometry>& pose) {
-  if (!pose.matrix().allFinite() || !withinCoordinateRange(pose.translation())) {
-    throwInvalidArgument(where,
-                         std::string("the pose ") + name +
-                             " must be finite, its translation at most " +
-                             formatValue(maxCoordinate<S>()) + " in magnitude",
-                         pose.translation());
+  // x·0 is 0 for a finite x and NaN otherwise: one branch-free sum instead of 16 branches.
+  const S zero = (pose.matrix().array() * S(0)).sum();
+  if (!(zero == S(0)) || !withinCoordinateRange(pose.translation())) {
+    throwBadPose<S>(where, name, pose.translation());
   }
 }
 

@@ -97,8 +97,9 @@ struct NestedNorm {
   }
   /// The support function h of a shape.
   static NestedNorm support(const Superellipsoid<S>& shape) {
-    const S q1 = S(2) / (S(2) - shape.eps1()), q2 = S(2) / (S(2) - shape.eps2());
-    return {shape.radii(), q1, q2, S(1) / q1, S(1) / q2};
+    // 1/q = (2 − ε)/2: one rounding, where 1/(2/(2 − ε)) would take two more and a division.
+    const S d1 = S(2) - shape.eps1(), d2 = S(2) - shape.eps2();
+    return {shape.radii(), S(2) / d1, S(2) / d2, d1 / S(2), d2 / S(2)};
   }
 
   S value(const Vector3<S>& w) const {
@@ -123,13 +124,13 @@ struct NestedNorm {
     // N(a, b) = ‖(a, b)‖_p:  ∂N/∂a = (a/N)^(p−1),
     //   ∂²N/∂a² = (p−1)/N·(a/N)^(p−2)·(b/N)^p,  ∂²N/∂a∂b = −(p−1)/N·(a/N)^(p−1)·(b/N)^(p−1)
     // (using 1 − (a/N)^p = (b/N)^p, which avoids the cancellation).
-    const S t1 = r > S(0) ? u[0] / r : S(0), t2 = r > S(0) ? u[1] / r : S(0);
-    const S tr = r / out.value, t3 = u[2] / out.value;
     const S r1 = level1.pow_a, r2 = level1.pow_b;    // t1^(p1−1), t2^(p1−1)
     const S g_r = level2.pow_a, g_3 = level2.pow_b;  // tr^(p2−1), t3^(p2−1)
     const Vector3<S> grad_u(g_r * r1, g_r * r2, g_3);
     out.gradient = grad_u.cwiseProduct(scale);
     if (!with_hessian) return out;
+    const S t1 = r > S(0) ? u[0] / r : S(0), t2 = r > S(0) ? u[1] / r : S(0);
+    const S tr = r / out.value, t3 = u[2] / out.value;
 
     // (t)^(p−2) = t^(p−1)/t; a floor on t keeps it finite when p < 2 (the Hessian is
     // unbounded there: this is the singularity the solver works around, not hides).

@@ -10,7 +10,7 @@ namespace fcl_superellipsoid {
 namespace detail {
 template <typename S>
 std::optional<PairHit<S>> capsuleHit(const Pair<S>& pair) {
-  const auto* capsule = geometryAs<fcl::Capsule<S>>(pair.other, fcl::GEOM_CAPSULE);
+  const auto* capsule = otherAs<fcl::Capsule<S>>(pair, fcl::GEOM_CAPSULE);
   if (capsule == nullptr) return std::nullopt;
   const Vector3<S> half_axis = pair.X_WO->linear().col(2) * (capsule->lz / 2);
   const Vector3<S> centre = pair.X_WO->translation();

@@ -35,8 +35,8 @@ PairHit<S> sideHit(const WorldPlane<S>& plane, S side, const Vector3<S>& p) {
 
 template <typename S>
 std::optional<PairHit<S>> halfspaceHit(const Pair<S>& pair) {
-  const auto* halfspace = geometryAs<fcl::Halfspace<S>>(pair.other, fcl::GEOM_HALFSPACE);
-  const auto* plane = geometryAs<fcl::Plane<S>>(pair.other, fcl::GEOM_PLANE);
+  const auto* halfspace = otherAs<fcl::Halfspace<S>>(pair, fcl::GEOM_HALFSPACE);
+  const auto* plane = otherAs<fcl::Plane<S>>(pair, fcl::GEOM_PLANE);
   if (halfspace == nullptr && plane == nullptr) return std::nullopt;
   const WorldPlane<S> w = halfspace != nullptr ? toWorld(halfspace->n, halfspace->d, *pair.X_WO)
                                                : toWorld(plane->n, plane->d, *pair.X_WO);

@@ -77,15 +77,12 @@ PairHit<S> ccdHit(const Pair<S>& pair, const Other& other) {
 
 template <typename S>
 std::optional<PairHit<S>> libccdHit(const Pair<S>& pair) {
-  if (const auto* o = geometryAs<fcl::Box<S>>(pair.other, fcl::GEOM_BOX)) return ccdHit(pair, *o);
-  if (const auto* o = geometryAs<fcl::Capsule<S>>(pair.other, fcl::GEOM_CAPSULE))
-    return ccdHit(pair, *o);
-  if (const auto* o = geometryAs<fcl::Cylinder<S>>(pair.other, fcl::GEOM_CYLINDER))
-    return ccdHit(pair, *o);
-  if (const auto* o = geometryAs<fcl::Cone<S>>(pair.other, fcl::GEOM_CONE)) return ccdHit(pair, *o);
-  if (const auto* o = geometryAs<fcl::Convex<S>>(pair.other, fcl::GEOM_CONVEX))
-    return ccdHit(pair, *o);
-  if (const auto* o = geometryAs<fcl::TriangleP<S>>(pair.other, fcl::GEOM_TRIANGLE)) {
+  if (const auto* o = otherAs<fcl::Box<S>>(pair, fcl::GEOM_BOX)) return ccdHit(pair, *o);
+  if (const auto* o = otherAs<fcl::Capsule<S>>(pair, fcl::GEOM_CAPSULE)) return ccdHit(pair, *o);
+  if (const auto* o = otherAs<fcl::Cylinder<S>>(pair, fcl::GEOM_CYLINDER)) return ccdHit(pair, *o);
+  if (const auto* o = otherAs<fcl::Cone<S>>(pair, fcl::GEOM_CONE)) return ccdHit(pair, *o);
+  if (const auto* o = otherAs<fcl::Convex<S>>(pair, fcl::GEOM_CONVEX)) return ccdHit(pair, *o);
+  if (const auto* o = otherAs<fcl::TriangleP<S>>(pair, fcl::GEOM_TRIANGLE)) {
     return ccdHit(pair, *o);
   }
   return std::nullopt;

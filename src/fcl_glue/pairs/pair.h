@@ -18,17 +18,25 @@
 namespace fcl_superellipsoid {
 namespace detail {
 
-/// g as FCL's geometry class T, or nullptr: its node type must be `type` and its dynamic type T
-/// (a user's geometry may report any node type). The node type is read first because a
-/// dynamic_cast that fails compares type names with strcmp across shared libraries: a chain of
-/// failing casts cost more than a halfspace pair's own arithmetic. The exact type is checked
-/// before the cast for the same reason (one comparison of type_info objects where a successful
-/// dynamic_cast walks the class hierarchy); a subclass of T still gets the dynamic_cast.
+/// g as FCL's geometry class T, or nullptr, where g's node type (read by the caller: one
+/// virtual call per geometry and query) is `node_type`; it must be `type` and g's dynamic type
+/// T (a user's geometry may report any node type). A dynamic_cast that fails compares type
+/// names with strcmp across shared libraries, and a successful one walks the class hierarchy:
+/// both cost more than a halfspace pair's own arithmetic, so the node type is compared first
+/// and then the exact type (one comparison of type_info objects); a subclass of T still gets
+/// the dynamic_cast.
 template <typename T, typename S>
-const T* geometryAs(const fcl::CollisionGeometry<S>* g, fcl::NODE_TYPE type) {
-  if (g->getNodeType() != type) return nullptr;
+const T* geometryAs(const fcl::CollisionGeometry<S>* g, fcl::NODE_TYPE node_type,
+                    fcl::NODE_TYPE type) {
+  if (node_type != type) return nullptr;
   if (typeid(*g) == typeid(T)) return static_cast<const T*>(g);
   return dynamic_cast<const T*>(g);
+}
+
+/// g as FCL's geometry class T, or nullptr (reads g's node type).
+template <typename T, typename S>
+const T* geometryAs(const fcl::CollisionGeometry<S>* g, fcl::NODE_TYPE type) {
+  return geometryAs<T>(g, g->getNodeType(), type);
 }
 
 /// g as a Superellipsoid (node type BV_UNKNOWN), or nullptr.
@@ -46,7 +54,8 @@ struct Pair {
   const fcl::Transform3<S>* X_WS = nullptr;
   const fcl::CollisionGeometry<S>* other = nullptr;
   const fcl::Transform3<S>* X_WO = nullptr;
-  bool shape_first = true;  // the shape is o1
+  bool shape_first = true;                      // the shape is o1
+  fcl::NODE_TYPE other_type = fcl::BV_UNKNOWN;  // other->getNodeType(), read once
 };
 
 /// The pair, or one with shape == nullptr if neither geometry is a superellipsoid. Of two
@@ -54,11 +63,20 @@ struct Pair {
 template <typename S>
 Pair<S> makePair(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1,
                  const fcl::CollisionGeometry<S>* o2, const fcl::Transform3<S>& tf2) {
-  const Superellipsoid<S>* s1 = asSuperellipsoid(o1);
-  const Superellipsoid<S>* s2 = asSuperellipsoid(o2);
-  if (s1 != nullptr) return {o1, o2, s1, &tf1, o2, &tf2, true};
-  if (s2 != nullptr && s1 == nullptr) return {o1, o2, s2, &tf2, o1, &tf1, false};
+  const fcl::NODE_TYPE t1 = o1->getNodeType(), t2 = o2->getNodeType();
+  if (const auto* s1 = geometryAs<Superellipsoid<S>>(o1, t1, fcl::BV_UNKNOWN)) {
+    return {o1, o2, s1, &tf1, o2, &tf2, true, t2};
+  }
+  if (const auto* s2 = geometryAs<Superellipsoid<S>>(o2, t2, fcl::BV_UNKNOWN)) {
+    return {o1, o2, s2, &tf2, o1, &tf1, false, t1};
+  }
   return {o1, o2};
+}
+
+/// The pair's other geometry as FCL's geometry class T of node type `type`, or nullptr.
+template <typename T, typename S>
+const T* otherAs(const Pair<S>& pair, fcl::NODE_TYPE type) {
+  return geometryAs<T>(pair.other, pair.other_type, type);
 }
 
 /// A hit between the shape and the other geometry, in world coordinates: the point on the

@@ -45,7 +45,7 @@ void warnUnsupported(const char* what, int node_type1, int node_type2) {
 /// dynamic type too: a user's geometry may report any node type).
 template <typename S>
 std::optional<PairHit<S>> shapeHit(const Pair<S>& pair) {
-  switch (pair.other->getNodeType()) {
+  switch (pair.other_type) {
     case fcl::GEOM_SPHERE:
       return sphereHit(pair);
     case fcl::GEOM_HALFSPACE:
@@ -72,7 +72,7 @@ std::optional<PairHit<S>> shapeHit(const Pair<S>& pair) {
 /// coordinate beyond a sixteenth of the largest finite value (its features' coordinates, sums
 /// of a few of them, must stay finite; docs/hardening.md → "Bad input").
 template <typename S>
-void checkOther(const char* where, const fcl::CollisionGeometry<S>* other) {
+void checkOther(const char* where, const fcl::CollisionGeometry<S>* other, fcl::NODE_TYPE type) {
   const S limit = std::numeric_limits<S>::max() / 16;
   auto length = [&](const char* name, S v) {
     if (!(v >= S(0) && v <= limit)) {
@@ -97,45 +97,45 @@ void checkOther(const char* where, const fcl::CollisionGeometry<S>* other) {
     point("normal n", x.n);
     length("|d|", std::abs(x.d));
   };
-  // One virtual call picks the kind (a chain of geometryAs calls costs one per kind tried).
-  switch (other->getNodeType()) {
+  switch (type) {
     case fcl::GEOM_SPHERE:
-      if (const auto* x = geometryAs<fcl::Sphere<S>>(other, fcl::GEOM_SPHERE)) {
+      if (const auto* x = geometryAs<fcl::Sphere<S>>(other, type, fcl::GEOM_SPHERE)) {
         length("radius", x->radius);
       }
       break;
     case fcl::GEOM_ELLIPSOID:
-      if (const auto* x = geometryAs<fcl::Ellipsoid<S>>(other, fcl::GEOM_ELLIPSOID)) {
+      if (const auto* x = geometryAs<fcl::Ellipsoid<S>>(other, type, fcl::GEOM_ELLIPSOID)) {
         for (int i = 0; i < 3; ++i) length("radii", x->radii[i]);
       }
       break;
     case fcl::GEOM_BOX:
-      if (const auto* x = geometryAs<fcl::Box<S>>(other, fcl::GEOM_BOX)) {
+      if (const auto* x = geometryAs<fcl::Box<S>>(other, type, fcl::GEOM_BOX)) {
         for (int i = 0; i < 3; ++i) length("side", x->side[i]);
       }
       break;
     case fcl::GEOM_CAPSULE:
-      if (const auto* x = geometryAs<fcl::Capsule<S>>(other, fcl::GEOM_CAPSULE)) round(*x);
+      if (const auto* x = geometryAs<fcl::Capsule<S>>(other, type, fcl::GEOM_CAPSULE)) round(*x);
       break;
     case fcl::GEOM_CYLINDER:
-      if (const auto* x = geometryAs<fcl::Cylinder<S>>(other, fcl::GEOM_CYLINDER)) round(*x);
+      if (const auto* x = geometryAs<fcl::Cylinder<S>>(other, type, fcl::GEOM_CYLINDER)) round(*x);
       break;
     case fcl::GEOM_CONE:
-      if (const auto* x = geometryAs<fcl::Cone<S>>(other, fcl::GEOM_CONE)) round(*x);
+      if (const auto* x = geometryAs<fcl::Cone<S>>(other, type, fcl::GEOM_CONE)) round(*x);
       break;
     case fcl::GEOM_HALFSPACE:
-      if (const auto* x = geometryAs<fcl::Halfspace<S>>(other, fcl::GEOM_HALFSPACE)) plane(*x);
+      if (const auto* x = geometryAs<fcl::Halfspace<S>>(other, type, fcl::GEOM_HALFSPACE))
+        plane(*x);
       break;
     case fcl::GEOM_PLANE:
-      if (const auto* x = geometryAs<fcl::Plane<S>>(other, fcl::GEOM_PLANE)) plane(*x);
+      if (const auto* x = geometryAs<fcl::Plane<S>>(other, type, fcl::GEOM_PLANE)) plane(*x);
       break;
     case fcl::GEOM_CONVEX:
-      if (const auto* x = geometryAs<fcl::Convex<S>>(other, fcl::GEOM_CONVEX)) {
+      if (const auto* x = geometryAs<fcl::Convex<S>>(other, type, fcl::GEOM_CONVEX)) {
         for (const Vector3<S>& v : x->getVertices()) point("vertex", v);
       }
       break;
     case fcl::GEOM_TRIANGLE:
-      if (const auto* x = geometryAs<fcl::TriangleP<S>>(other, fcl::GEOM_TRIANGLE)) {
+      if (const auto* x = geometryAs<fcl::TriangleP<S>>(other, type, fcl::GEOM_TRIANGLE)) {
         point("vertex a", x->a);
         point("vertex b", x->b);
         point("vertex c", x->c);
@@ -149,8 +149,7 @@ void checkOther(const char* where, const fcl::CollisionGeometry<S>* other) {
 /// FCL's BVH models (BV_AABB … BV_KDOP24 are contiguous in FCL's NODE_TYPE).
 template <typename S>
 bool isMesh(const Pair<S>& pair) {
-  const fcl::NODE_TYPE t = pair.other->getNodeType();
-  return t >= fcl::BV_AABB && t <= fcl::BV_KDOP24;
+  return pair.other_type >= fcl::BV_AABB && pair.other_type <= fcl::BV_KDOP24;
 }
 
 }  // namespace
@@ -172,7 +171,7 @@ S pairDistance(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf
     if (isMesh(pair)) {
       if (const std::optional<S> answer = meshDistance(pair, request, result)) return *answer;
     }
-    if (!isMesh(pair)) checkOther("superellipsoid distance", pair.other);
+    if (!isMesh(pair)) checkOther("superellipsoid distance", pair.other, pair.other_type);
     if (const std::optional<PairHit<S>> hit = shapeHit(pair)) {
       updateDistance(pair, *hit, request, result);
       return result.min_distance;
@@ -193,7 +192,7 @@ std::size_t pairCollide(const fcl::CollisionGeometry<S>* o1, const fcl::Transfor
     if (request.num_max_contacts <= result.numContacts()) return result.numContacts();
     const std::size_t room = request.num_max_contacts - result.numContacts();
     if (isMesh(pair) && meshCollide(pair, request, room, result)) return result.numContacts();
-    if (!isMesh(pair)) checkOther("superellipsoid collide", pair.other);
+    if (!isMesh(pair)) checkOther("superellipsoid collide", pair.other, pair.other_type);
     if (const std::optional<PairHit<S>> hit = shapeHit(pair)) {
       // One contact where they overlap, halfway between the two surfaces.
       if (hit->distance < S(0)) {

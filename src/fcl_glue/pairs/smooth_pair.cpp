@@ -136,9 +136,9 @@ template <typename S>
 std::optional<PairHit<S>> smoothHit(const Pair<S>& pair) {
   const SupportMap<S> shape(*pair.shape, *pair.X_WS);
   SmoothPairAnswer<S> r;
-  if (const auto* other = asSuperellipsoid(pair.other)) {
+  if (const auto* other = otherAs<Superellipsoid<S>>(pair, fcl::BV_UNKNOWN)) {
     r = solveSmoothPair(shape, SupportMap<S>(*other, *pair.X_WO));
-  } else if (const auto* other = geometryAs<fcl::Ellipsoid<S>>(pair.other, fcl::GEOM_ELLIPSOID)) {
+  } else if (const auto* other = otherAs<fcl::Ellipsoid<S>>(pair, fcl::GEOM_ELLIPSOID)) {
     r = solveSmoothPair(shape, SupportMap<S>(*other, *pair.X_WO));
   } else {
     return std::nullopt;

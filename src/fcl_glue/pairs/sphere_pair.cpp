@@ -9,7 +9,7 @@ namespace detail {
 /// The sphere as a vertex with a radius: its centre's distance minus the radius.
 template <typename S>
 std::optional<PairHit<S>> sphereHit(const Pair<S>& pair) {
-  const auto* sphere = geometryAs<fcl::Sphere<S>>(pair.other, fcl::GEOM_SPHERE);
+  const auto* sphere = otherAs<fcl::Sphere<S>>(pair, fcl::GEOM_SPHERE);
   if (sphere == nullptr) return std::nullopt;
   const Vector3<S> centre_W = pair.X_WO->translation();
   const PointDistanceResult<S> r =
