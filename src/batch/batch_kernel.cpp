@@ -101,25 +101,31 @@ HWY_INLINE hn::Vec<D> Pow(D d, hn::Vec<D> x, hn::Vec<D> p) {
   return hn::IfThenElseZero(positive, hn::Exp(d, hn::Mul(p, hn::Log(d, safe))));
 }
 
-/// ‖(a, b)‖_p and its gradient's powers (a/N)^(p−1), (b/N)^(p−1): pnorm2WithPowers, lane-wise.
+/// ‖(a, b)‖_p and its gradient's powers (a/N)^(p−1), (b/N)^(p−1): pnorm2WithPowers, lane-wise;
+/// also log(1 + q), q = (lo/m)^p, from which the nested norm's second level takes its ratio.
 template <class D>
 struct PNorm2Lanes {
-  hn::Vec<D> norm, pow_a, pow_b;
+  hn::Vec<D> norm, pow_a, pow_b, log_1pq;
 };
 
+/// log_ratio, if given, is log(min(a, b)/max(a, b)) (any value where min(a, b) = 0).
 template <class D>
 HWY_INLINE PNorm2Lanes<D> PNorm2WithPowers(D d, hn::Vec<D> a, hn::Vec<D> b, hn::Vec<D> p,
-                                           hn::Vec<D> inv_p, hn::Vec<D> p_minus_1) {
+                                           hn::Vec<D> inv_p, hn::Vec<D> p_minus_1,
+                                           const hn::Vec<D>* log_ratio = nullptr) {
   using T = hn::TFromD<D>;
   const hn::Vec<D> zero = hn::Zero(d), one = hn::Set(d, 1);
   const hn::Vec<D> m = hn::Max(a, b), lo = hn::Min(a, b);
   const auto m_positive = hn::Gt(m, zero), lo_positive = hn::Gt(lo, zero);
   const hn::Vec<D> ratio = hn::Div(lo, hn::IfThenElse(m_positive, m, one));  // lo/m ∈ [0, 1]
-  const hn::Vec<D> q = Pow(d, ratio, p);
+  const hn::Vec<D> log_t =
+      log_ratio != nullptr ? *log_ratio : hn::Log(d, hn::IfThenElse(lo_positive, ratio, one));
+  const hn::Vec<D> q = hn::IfThenElseZero(lo_positive, hn::Exp(d, hn::Mul(p, log_t)));
   const hn::Vec<D> one_plus_q = hn::Add(one, q);
   // w = (1 + q)^(1/p), N = m·w. log(1 + q) rounds 1 + q first; its absolute error of an ulp
   // moves N by a relative ulp/p, so log1p is not needed.
-  const hn::Vec<D> w = hn::Exp(d, hn::Mul(inv_p, hn::Log(d, one_plus_q)));
+  const hn::Vec<D> log_1pq = hn::Log(d, one_plus_q);
+  const hn::Vec<D> w = hn::Exp(d, hn::Mul(inv_p, log_1pq));
   const hn::Vec<D> n = hn::Mul(m, w);
   // (m/N)^(p−1) = N/(m·(1 + q)) = w/(1 + q);  (lo/N)^(p−1) = (lo/m)^(p−1)·(m/N)^(p−1), with
   // (lo/m)^(p−1) = q/ratio, or a power of its own where q is subnormal (nested_norm.h).
@@ -132,7 +138,37 @@ HWY_INLINE PNorm2Lanes<D> PNorm2WithPowers(D d, hn::Vec<D> a, hn::Vec<D> b, hn::
   const hn::Vec<D> pow_lo = hn::IfThenElseZero(lo_positive, hn::Mul(ratio_pow, pow_m));
   const auto a_larger = hn::Ge(a, b);
   return {n, hn::IfThenElseZero(m_positive, hn::IfThenElse(a_larger, pow_m, pow_lo)),
-          hn::IfThenElseZero(m_positive, hn::IfThenElse(a_larger, pow_lo, pow_m))};
+          hn::IfThenElseZero(m_positive, hn::IfThenElse(a_larger, pow_lo, pow_m)), log_1pq};
+}
+
+/// Both levels of the nested norm at u = (scaled) w ≥ 0. The second level's ratio is
+/// min(r, u2)/max(r, u2) with r = m1·(1 + q1)^(1/p1) the first level's norm; its logarithm is
+/// taken as −|log m1 + log(1 + q1)/p1 − log u2|, from logarithms that do not wait for r. Each
+/// level is a chain log → exp → log → exp, and a vector's Newton iteration waits on its
+/// evaluations (nothing else is in flight), so this shortens the evaluation's critical path
+/// from four such steps per level and a division between the levels to three in all: log m1 and
+/// log u2 are computed beside the first level, and w1 = exp(log(1 + q1)/p1) beside the second.
+/// The log's absolute error, a few ulps of |log m1| + |log u2|, moves q2 by p2 times as much
+/// relatively, and N by at most that error (N's relative change is (1/p2)·q2/(1 + q2) times
+/// q2's): within a few ulps for the kernel's queries (the far and near-centre ones go to the
+/// scalar solver).
+template <class D>
+struct NestedLevels {
+  PNorm2Lanes<D> level1, level2;
+};
+
+template <class D>
+HWY_INLINE NestedLevels<D> EvaluateLevels(D d, const NormLanes<D>& c, hn::Vec<D> u0, hn::Vec<D> u1,
+                                          hn::Vec<D> u2) {
+  const hn::Vec<D> zero = hn::Zero(d), one = hn::Set(d, 1);
+  auto safe_log = [&](hn::Vec<D> x) { return hn::Log(d, hn::IfThenElse(hn::Gt(x, zero), x, one)); };
+  const hn::Vec<D> log_m1 = safe_log(hn::Max(u0, u1)), log_u2 = safe_log(u2);
+  NestedLevels<D> out;
+  out.level1 = PNorm2WithPowers(d, u0, u1, c.p1, c.inv_p1, c.p1_m1);
+  const hn::Vec<D> log_r = hn::MulAdd(c.inv_p1, out.level1.log_1pq, log_m1);
+  const hn::Vec<D> log_ratio2 = hn::Neg(hn::Abs(hn::Sub(log_r, log_u2)));
+  out.level2 = PNorm2WithPowers(d, out.level1.norm, u2, c.p2, c.inv_p2, c.p2_m1, &log_ratio2);
+  return out;
 }
 
 /// A symmetric 3×3 matrix by its upper triangle.
@@ -174,9 +210,10 @@ HWY_INLINE NormEval<D> Evaluate(D d, const NormLanes<D>& c, const Vec3<D>& w) {
   using V = hn::Vec<D>;
   const V zero = hn::Zero(d), one = hn::Set(d, 1);
   const V u0 = hn::Mul(w.x, c.s0), u1 = hn::Mul(w.y, c.s1), u2 = hn::Mul(w.z, c.s2);
-  const PNorm2Lanes<D> level1 = PNorm2WithPowers(d, u0, u1, c.p1, c.inv_p1, c.p1_m1);
+  const NestedLevels<D> levels = EvaluateLevels(d, c, u0, u1, u2);
+  const PNorm2Lanes<D>& level1 = levels.level1;
   const V r = level1.norm;
-  const PNorm2Lanes<D> level2 = PNorm2WithPowers(d, r, u2, c.p2, c.inv_p2, c.p2_m1);
+  const PNorm2Lanes<D>& level2 = levels.level2;
   NormEval<D> out;
   out.value = level2.norm;
   const auto value_positive = hn::Gt(out.value, zero), r_positive = hn::Gt(r, zero);
@@ -725,6 +762,29 @@ void ClassifyVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
   for (std::size_t k = 0; k < hn::Lanes(d); ++k) lanes.status[i + k] = std::int32_t(codes[k]);
 }
 
+/// G at n first-octant points (gaugeLanes).
+template <typename T>
+void GaugeLanes(const NestedNorm<T>& primal, const T* const query[3], T* gauge, std::size_t n) {
+  using D = hn::ScalableTag<T>;
+  const D d;
+  const NormLanes<D> c(d, primal);
+  for (std::size_t i = 0; i < n; i += hn::Lanes(d)) {
+    const Vec3<D> y = LoadVec3(d, query, i);
+    const NestedLevels<D> levels =
+        EvaluateLevels(d, c, hn::Mul(y.x, c.s0), hn::Mul(y.y, c.s1), hn::Mul(y.z, c.s2));
+    hn::StoreU(levels.level2.norm, d, gauge + i);
+  }
+}
+
+void GaugeLanesFloat(const NestedNorm<float>& primal, const float* const query[3], float* gauge,
+                     std::size_t n) {
+  GaugeLanes(primal, query, gauge, n);
+}
+void GaugeLanesDouble(const NestedNorm<double>& primal, const double* const query[3], double* gauge,
+                      std::size_t n) {
+  GaugeLanes(primal, query, gauge, n);
+}
+
 template <typename T>
 void SolveLanes(const LaneProblem<T>& problem, const LaneArrays<T>& lanes, std::size_t n,
                 LanePass pass) {
@@ -765,6 +825,17 @@ namespace detail {
 
 HWY_EXPORT(SolveLanesFloat);
 HWY_EXPORT(SolveLanesDouble);
+HWY_EXPORT(GaugeLanesFloat);
+HWY_EXPORT(GaugeLanesDouble);
+
+void gaugeLanes(const NestedNorm<float>& primal, const float* const query[3], float* gauge,
+                std::size_t n) {
+  HWY_DYNAMIC_DISPATCH(GaugeLanesFloat)(primal, query, gauge, n);
+}
+void gaugeLanes(const NestedNorm<double>& primal, const double* const query[3], double* gauge,
+                std::size_t n) {
+  HWY_DYNAMIC_DISPATCH(GaugeLanesDouble)(primal, query, gauge, n);
+}
 
 void solveLanes(const LaneProblem<float>& problem, const LaneArrays<float>& lanes, std::size_t n,
                 LanePass pass) {

@@ -26,7 +26,9 @@
 // Powers are exp(p·log x) with Highway's vectorised exp/log (≤ 4 ulp). Every power the solver
 // takes is of a ratio t ∈ [0, 1] inside a p-norm m·(1 + t^p)^(1/p): an error δ in t^p moves the
 // norm by (1/p)·t^p/(1 + t^p)·δ ≤ δ/p, and the rounding of p·log t grows δ only by |log t^p|,
-// whose product with t^p stays below 1/e. So the nested norms come out within a few ulps.
+// whose product with t^p stays below 1/e. So the nested norms come out within a few ulps. The
+// second level's ratio is taken from logarithms (EvaluateLevels in the .cpp: a shorter chain of
+// exp/log for a latency-bound loop), which adds a few ulps of |log| of the coordinates.
 
 #include <cstddef>
 #include <cstdint>
@@ -88,6 +90,15 @@ void solveLanes(const LaneProblem<float>& problem, const LaneArrays<float>& lane
                 LanePass pass);
 void solveLanes(const LaneProblem<double>& problem, const LaneArrays<double>& lanes, std::size_t n,
                 LanePass pass);
+
+/// The gauge G(Q) (the primal nested norm) at n first-octant points query[0..2][i], lane by
+/// lane, into gauge[i], with the kernel's powers (within a few ulps of NestedNorm::value). n
+/// must be a multiple of kMaxLanes. The BVH traversal's collision test (fcl_glue/
+/// vertex_traversal.cpp) classifies a subtree's vertices with it.
+void gaugeLanes(const NestedNorm<float>& primal, const float* const query[3], float* gauge,
+                std::size_t n);
+void gaugeLanes(const NestedNorm<double>& primal, const double* const query[3], double* gauge,
+                std::size_t n);
 
 }  // namespace detail
 }  // namespace fcl_superellipsoid

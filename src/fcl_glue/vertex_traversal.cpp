@@ -11,6 +11,7 @@
 #include <limits>
 #include <unordered_set>
 
+#include "batch/batch_kernel.h"
 #include "fcl_superellipsoid/batch_distance.h"
 #include "fcl_superellipsoid/diagnostics.h"
 #include "fcl_superellipsoid/point_distance.h"
@@ -120,13 +121,22 @@ class VertexTraversal {
     for (const VertexHit<S>& h : solveAll(inside_)) {
       if (h.distance < S(0)) hits.push_back(h);
     }
-    const auto deeper = [](const VertexHit<S>& a, const VertexHit<S>& b) {
-      return a.distance < b.distance || (a.distance == b.distance && a.vertex < b.vertex);
-    };
+    // Sorted by (depth, vertex) keys, then gathered: a hit is several times a key's size.
+    std::vector<std::pair<S, int>> keys(hits.size());
+    for (std::size_t k = 0; k < hits.size(); ++k) keys[k] = {hits[k].distance, int(k)};
     const std::size_t keep = std::min(max_count_, hits.size());
-    std::partial_sort(hits.begin(), hits.begin() + keep, hits.end(), deeper);
-    hits.resize(keep);
-    return hits;
+    const auto deeper = [&hits](const std::pair<S, int>& a, const std::pair<S, int>& b) {
+      return a.first < b.first ||
+             (a.first == b.first && hits[a.second].vertex < hits[b.second].vertex);
+    };
+    if (keep == hits.size()) {
+      std::sort(keys.begin(), keys.end(), deeper);  // partial_sort would heap-sort them all
+    } else {
+      std::partial_sort(keys.begin(), keys.begin() + keep, keys.end(), deeper);
+    }
+    std::vector<VertexHit<S>> deepest(keep);
+    for (std::size_t k = 0; k < keep; ++k) deepest[k] = hits[keys[k].second];
+    return deepest;
   }
 
  private:
@@ -172,6 +182,36 @@ class VertexTraversal {
     const fcl::BVNode<BV>& n = model_.getBV(node);
     if (n.num_primitives <= kUnboundedPrimitives) return -std::numeric_limits<S>::infinity();
     return lowerBound(n.bv, cutoff);
+  }
+
+  /// The vertices of the subtree at `root`, breadth first: each level's nodes, and then the
+  /// vertices, are prefetched together. A small subtree's nodes are scattered over a large
+  /// model, and its vertices over the vertex array (a point cloud's are in no spatial order), so
+  /// visiting them one at a time waited on a cache miss for each: that was most of the
+  /// traversal's time on a 1e6-vertex cloud (docs/design.md → "The BVH traversal"). The
+  /// returned buffer is reused by the next call.
+  const std::vector<int>& gatherSubtree(int root) {
+    subtree_.clear();
+    level_.assign(1, root);
+    while (!level_.empty()) {
+      next_level_.clear();
+      for (const int node : level_) {
+        const fcl::BVNode<BV>& n = model_.getBV(node);
+        if (n.isLeaf()) {
+          forEachVertex(n, [this](int v) {
+            __builtin_prefetch(&model_.vertices[v]);
+            subtree_.push_back(v);
+          });
+          continue;
+        }
+        for (const int child : {n.leftChild(), n.rightChild()}) {
+          __builtin_prefetch(&model_.getBV(child));
+          next_level_.push_back(child);
+        }
+      }
+      level_.swap(next_level_);
+    }
+    return subtree_;
   }
 
   /// Calls f(vertex index) for the vertices of a leaf's primitive.
@@ -259,13 +299,15 @@ class VertexTraversal {
   void descendForDistance(int node) {
     if (done()) return;
     const fcl::BVNode<BV>& n = model_.getBV(node);
-    if (n.isLeaf()) {
-      forEachVertex(n, [this](int v) {
-        if (!done()) testForDistance(v);
-      });
+    if (n.num_primitives <= kUnboundedPrimitives) {  // no BV of it is bounded (boundOf)
+      for (const int v : gatherSubtree(node)) {
+        if (done()) return;
+        testForDistance(v);
+      }
       return;
     }
     int first = n.leftChild(), second = n.rightChild();
+    prefetchNodes(first, second);
     S bound_first = boundOf(first, best_upper_);
     S bound_second = boundOf(second, best_upper_);
     if (bound_second < bound_first) {
@@ -279,30 +321,56 @@ class VertexTraversal {
 
   bool full() const { return !with_depth_ && hits_.size() >= max_count_; }
 
-  void testForCollision(int v) {
-    ++stats_.vertices_bounded;
-    const Vector3<S> p_S = inShapeFrame(v);
-    if (!(gauge_.value(p_S.cwiseAbs()) < S(1))) return;  // on or outside the surface
-    if (!with_depth_) {
-      VertexHit<S> hit;
-      hit.vertex = v;
-      hits_.push_back(hit);
-      return;
+  /// The vertices strictly inside, in order, until full(): their gauge G < 1, evaluated on SIMD
+  /// lanes (gaugeLanes, within a few ulps of the scalar gauge: a vertex that close to the
+  /// surface is solved and kept only if its solved distance is negative, penetrating()).
+  void testForCollision(const std::vector<int>& vertices) {
+    const std::size_t n = vertices.size();
+    if (n == 0) return;
+    const std::size_t padded = (n + kMaxLanes - 1) / kMaxLanes * kMaxLanes;
+    for (std::vector<S>& coordinate : lane_query_) coordinate.resize(padded);
+    lane_gauge_.resize(padded);
+    for (std::size_t k = 0; k < padded; ++k) {  // the padding repeats the last vertex
+      const Vector3<S> p_S = inShapeFrame(vertices[std::min(k, n - 1)]).cwiseAbs();
+      for (int i = 0; i < 3; ++i) lane_query_[i][k] = p_S[i];
     }
-    inside_.push_back(v);  // solved together after the traversal
+    const S* const query[3] = {lane_query_[0].data(), lane_query_[1].data(), lane_query_[2].data()};
+    gaugeLanes(gauge_, query, lane_gauge_.data(), padded);
+    for (std::size_t k = 0; k < n; ++k) {
+      if (full()) return;
+      ++stats_.vertices_bounded;
+      if (!(lane_gauge_[k] < S(1))) continue;  // on or outside the surface
+      if (!with_depth_) {
+        VertexHit<S> hit;
+        hit.vertex = vertices[k];
+        hits_.push_back(hit);
+        continue;
+      }
+      inside_.push_back(vertices[k]);  // solved together after the traversal
+    }
   }
 
   void descendForCollision(int node) {
     if (full()) return;
     const fcl::BVNode<BV>& n = model_.getBV(node);
-    if (n.isLeaf()) {
-      forEachVertex(n, [this](int v) {
-        if (!full()) testForCollision(v);
-      });
+    if (n.num_primitives <= kUnboundedPrimitives) {  // no BV of it is bounded (boundOf)
+      testForCollision(gatherSubtree(node));
       return;
     }
+    prefetchNodes(n.leftChild(), n.rightChild());
     for (int child : {n.leftChild(), n.rightChild()}) {
       if (boundOf(child, S(0)) < S(0)) descendForCollision(child);
+    }
+  }
+
+  /// Prefetches two nodes whole (a node with its BV spans several cache lines), so that their
+  /// cache misses overlap instead of following each other.
+  void prefetchNodes(int a, int b) const {
+    for (const int node : {a, b}) {
+      const char* first = reinterpret_cast<const char*>(&model_.getBV(node));
+      for (std::size_t offset = 0; offset < sizeof(fcl::BVNode<BV>); offset += 64) {
+        __builtin_prefetch(first + offset);
+      }
     }
   }
 
@@ -315,7 +383,9 @@ class VertexTraversal {
   NestedNorm<S> gauge_;    // G, in the shape's frame
   DistanceOptions<S> options_;
   VertexTraversalStats& stats_;
-  std::unordered_set<int> seen_;  // triangle meshes: vertices already tested
+  std::unordered_set<int> seen_;                   // triangle meshes: vertices already tested
+  std::vector<int> subtree_, level_, next_level_;  // gatherSubtree's buffers
+  std::vector<S> lane_query_[3], lane_gauge_;      // testForCollision's lanes
   // Distance: the least upper bound so far, the vertices that may still beat it, and with
   // stop_at_penetration the first vertex found inside.
   struct Candidate {

@@ -17,7 +17,8 @@
 // a few primitives are not bounded at all: testing their vertices costs less.
 //
 // Solving. The traversal only bounds vertices (one gauge evaluation each, docs/math.md →
-// "Culling a BVH's vertices"); the vertices that survive are then solved together by the
+// "Culling a BVH's vertices"; on SIMD lanes for collision, docs/design.md → "The BVH
+// traversal"); the vertices that survive are then solved together by the
 // batched queries (batch_distance.h: the SIMD kernel and threads), with the shape's query
 // options. Distance keeps the least upper bound seen and the vertices whose lower bound does not
 // exceed it; collision keeps every vertex strictly inside.

@@ -6,9 +6,11 @@
 
 #include <random>
 
+#include "batch/batch_kernel.h"
 #include "batch/simd_targets_for_test.h"
 #include "fcl_superellipsoid/batch_distance.h"
 #include "fcl_superellipsoid/point_distance.h"
+#include "reference_distance.h"
 #include "test_helpers.h"
 
 namespace fcl_superellipsoid {
@@ -274,6 +276,53 @@ TYPED_TEST(BatchDistanceTest, EveryInstructionSetGivesTheSameAnswers) {
       Matrix3X<S> cloud(3, 2 * 101);
       cloud << offsetCloud(shape, 101, -0.05, 0.05, 15), offsetCloud(shape, 101, 1, 30, 16);
       EXPECT_GE(expectSimdAgrees(shape, X_WS, cloud), 0.5);
+    }
+  }
+  detail::restrictSimdTargets(0);
+}
+
+// The BVH traversal classifies vertices by the gauge on SIMD lanes (vertex_traversal.cpp): the
+// lanes' G against the long-double reference gauge (test_support/reference_distance.h), on
+// every instruction set, for random shapes and points from the centre to far outside, with
+// coordinates from 0 to tiny fractions of a radius (the powers of tiny ratios).
+TYPED_TEST(BatchDistanceTest, GaugeLanesMatchTheReferenceGauge) {
+  using S = TypeParam;
+  std::mt19937 rng(41);
+  std::uniform_real_distribution<double> eps(0.1, 1.9), radius(0.2, 5), unit(0, 1);
+  const std::size_t n = 16 * detail::kMaxLanes;
+  std::vector<S> coordinates[3], gauge(n);
+  for (std::vector<S>& c : coordinates) c.resize(n);
+  const auto targets = detail::simdTargetsOfThisCpu();
+  for (int trial = 0; trial < 40; ++trial) {
+    const Superellipsoid<S> shape(S(radius(rng)), S(radius(rng)), S(radius(rng)), S(eps(rng)),
+                                  S(eps(rng)));
+    SCOPED_TRACE(test::describe(shape));
+    const test::ReferenceDistance reference({shape.radii()[0], shape.radii()[1], shape.radii()[2]},
+                                            shape.eps1(), shape.eps2());
+    for (std::size_t i = 0; i < n; ++i) {
+      const S scale = S(3 * unit(rng));
+      for (int k = 0; k < 3; ++k) {
+        // A quarter of the coordinates tiny (down to 1e-30 of the radius) or zero.
+        const double pick = unit(rng);
+        const double f = pick < 0.05   ? 0
+                         : pick < 0.25 ? std::pow(10.0, -30 * unit(rng))
+                                       : unit(rng);
+        coordinates[k][i] = S(f) * scale * shape.radii()[k];
+      }
+    }
+    const S* const query[3] = {coordinates[0].data(), coordinates[1].data(), coordinates[2].data()};
+    for (const auto& [bits, name] : targets) {
+      SCOPED_TRACE(name);
+      detail::restrictSimdTargets(bits);
+      std::fill(gauge.begin(), gauge.end(), S(-1));
+      detail::gaugeLanes(detail::NestedNorm<S>::gauge(shape), query, gauge.data(), n);
+      for (std::size_t i = 0; i < n; ++i) {
+        const long double truth =
+            reference.gauge({coordinates[0][i], coordinates[1][i], coordinates[2][i]});
+        ASSERT_NEAR(gauge[i], truth, 6 * std::numeric_limits<S>::epsilon() * truth)
+            << "point " << i << " (" << coordinates[0][i] << ", " << coordinates[1][i] << ", "
+            << coordinates[2][i] << ")";
+      }
     }
   }
   detail::restrictSimdTargets(0);
