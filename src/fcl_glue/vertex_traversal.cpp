@@ -16,6 +16,7 @@
 #include "fcl_superellipsoid/diagnostics.h"
 #include "fcl_superellipsoid/point_distance.h"
 #include "shape/nested_norm.h"
+#include "solvers/exact_rules.h"
 
 namespace fcl_superellipsoid {
 
@@ -67,6 +68,9 @@ SweptBox<S> sweptBox(const fcl::KDOP<S, N>& bv) {
 /// Subtrees with at most this many primitives are descended without bounding their BVs.
 constexpr int kUnboundedPrimitives = 16;
 
+/// A distance query solves its first this many survivors together, then twice as many, ….
+constexpr std::size_t kFirstSolveBatch = 8;
+
 template <typename BV>
 class VertexTraversal {
  public:
@@ -90,22 +94,50 @@ class VertexTraversal {
 
   /// The vertex of least signed distance. The traversal keeps the least cheap upper bound seen
   /// so far and prunes every BV and vertex whose lower bound cannot beat it; the survivors are
-  /// solved together by the batched queries, and the least answer wins (ties: lower index).
+  /// solved by the batched queries, and the least answer wins (ties: lower index). With the
+  /// Exact method the survivors are solved in order of their lower bounds, in batches that
+  /// double (kFirstSolveBatch first), and a survivor whose lower bound exceeds the best answer
+  /// so far by more than the solver's accuracy (twice exact_rules::absoluteTolerance) is not
+  /// solved: a solved distance is a far tighter bound than the cheap upper ones, and the
+  /// survivors of a penetrating cloud lie deep inside, where each solve costs most. Other
+  /// methods are approximate, so every survivor is solved, as the brute force would.
   VertexHit<S> nearest(bool stop_at_penetration) {
     stop_at_penetration_ = stop_at_penetration;
     if (model_.getNumBVs() > 0) descendForDistance(0);
     if (penetrator_ >= 0) return solveOne(penetrator_);
-    std::vector<int> survivors;
+    std::vector<Candidate> open;
     for (const Candidate& c : candidates_) {
-      if (c.lower <= best_upper_) survivors.push_back(c.vertex);
+      if (c.lower <= best_upper_) open.push_back(c);
     }
-    std::vector<VertexHit<S>> hits = solveAll(survivors);
     VertexHit<S> best;
-    for (const VertexHit<S>& h : hits) {
+    auto keep = [&best](const VertexHit<S>& h) {
       if (best.vertex < 0 || h.distance < best.distance ||
           (h.distance == best.distance && h.vertex < best.vertex)) {
         best = h;
       }
+    };
+    if (options_.method != DistanceMethod::kExact) {
+      std::vector<int> survivors;
+      for (const Candidate& c : open) survivors.push_back(c.vertex);
+      for (const VertexHit<S>& h : solveAll(survivors)) keep(h);
+      return best;
+    }
+    std::sort(open.begin(), open.end(), [](const Candidate& a, const Candidate& b) {
+      return a.lower < b.lower || (a.lower == b.lower && a.vertex < b.vertex);
+    });
+    std::size_t next = 0, batch = kFirstSolveBatch;
+    std::vector<int> group;
+    while (next < open.size()) {
+      group.clear();
+      for (; next < open.size() && group.size() < batch; ++next) {
+        const Candidate& c = open[next];
+        const S accuracy =
+            S(2) * exact_rules::absoluteTolerance(options_.tolerance, shape_.size(), c.norm);
+        if (best.vertex >= 0 && c.lower > best.distance + accuracy) continue;
+        group.push_back(c.vertex);
+      }
+      for (const VertexHit<S>& h : solveAll(group)) keep(h);
+      batch *= 2;
     }
     return best;
   }
@@ -285,7 +317,10 @@ class VertexTraversal {
         penetrator_ = v;
         return;
       }
-      lower = g > S(0) ? -p_S.norm() * (S(1) / g - S(1)) : -shape_.radii().minCoeff();
+      // The shape lies in its bounding box, so the ray from v along an axis leaves the shape
+      // before the box: the depth is at most the distance to the box's nearest face too.
+      const S box_depth = (shape_.radii() - p_S.cwiseAbs()).minCoeff();
+      lower = g > S(0) ? -std::min(p_S.norm() * (S(1) / g - S(1)), box_depth) : -box_depth;
       upper = -a * (S(1) - g);
     } else {
       const S box_distance = (p_S.cwiseAbs() - shape_.radii()).cwiseMax(S(0)).norm();
@@ -293,7 +328,7 @@ class VertexTraversal {
       upper = p_S.norm() * (S(1) - S(1) / g);
     }
     best_upper_ = std::min(best_upper_, upper);
-    if (lower <= best_upper_) candidates_.push_back({v, lower});
+    if (lower <= best_upper_) candidates_.push_back({v, lower, p_S.norm()});
   }
 
   void descendForDistance(int node) {
@@ -391,6 +426,7 @@ class VertexTraversal {
   struct Candidate {
     int vertex;
     S lower;
+    S norm;  // ‖vertex‖ in the shape's frame (the solver's rounding floor grows with it)
   };
   bool stop_at_penetration_ = false;
   S best_upper_ = std::numeric_limits<S>::infinity();

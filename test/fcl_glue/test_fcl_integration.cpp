@@ -413,6 +413,43 @@ TYPED_TEST(FclIntegrationTest, ManyContactsMatchBruteForce) {
   }
 }
 
+// A distance query against a cloud deep in the shape solves its survivors nearest lower bound
+// first and skips those that cannot beat the best solved distance: the same vertex as brute
+// force, also when the deepest vertex is there twice (the lower index wins), while solving a
+// small fraction of the penetrating vertices.
+TYPED_TEST(FclIntegrationTest, DistanceSolvesFewOfManyPenetratingVertices) {
+  using S = TypeParam;
+  std::mt19937 rng(8);
+  for (const auto& e : std::vector<std::array<double, 2>>{{0.4, 0.3}, {1.3, 0.7}, {1, 1}}) {
+    const auto shape = std::make_shared<Superellipsoid<S>>(S(1.2), S(1), S(0.8), S(e[0]), S(e[1]));
+    SCOPED_TRACE(test::describe(*shape));
+    TriangleMesh<S> cloud = randomCloud<S>(rng, 3000, S(1.3));
+    const fcl::Transform3<S> X_WS = randomPose<S>(rng, S(0.1));
+    const Brute<S> first = bruteForce(cloud, fcl::Transform3<S>::Identity(), *shape, X_WS);
+    ASSERT_GT(first.inside.size(), 500u);
+    // The deepest vertex again, at the end: a tie that the lower index must win.
+    cloud.vertices.push_back(cloud.vertices[std::size_t(first.vertex)]);
+    const Brute<S> truth = bruteForce(cloud, fcl::Transform3<S>::Identity(), *shape, X_WS);
+    ASSERT_EQ(truth.vertex, first.vertex);
+    const auto model = makeBVHModel<fcl::OBBRSS<S>>(cloud);
+    for (bool shape_first : {true, false}) {
+      fcl::CollisionObject<S> o_shape(shape, X_WS), o_cloud(model);
+      vertexTraversalStats() = {};
+      fcl::DistanceResult<S> result;
+      if (shape_first) {
+        fcl_superellipsoid::distance(&o_shape, &o_cloud, fcl::DistanceRequest<S>(true, true),
+                                     result);
+      } else {
+        fcl_superellipsoid::distance(&o_cloud, &o_shape, fcl::DistanceRequest<S>(true, true),
+                                     result);
+      }
+      EXPECT_NEAR(result.min_distance, truth.distance, tolerance<S>());
+      EXPECT_EQ(shape_first ? result.b2 : result.b1, truth.vertex);
+      EXPECT_LT(vertexTraversalStats().vertices_solved, truth.inside.size() / 10);
+    }
+  }
+}
+
 // Per-shape options reach the vertex queries.
 TEST(FclIntegration, ShapeOptionsReachTheQueries) {
   const auto shape = std::make_shared<Superellipsoidd>(1, 0.6, 0.4, 1.7, 0.3);
