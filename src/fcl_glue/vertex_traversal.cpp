@@ -357,8 +357,9 @@ class VertexTraversal {
   bool full() const { return !with_depth_ && hits_.size() >= max_count_; }
 
   /// The vertices strictly inside, in order, until full(): their gauge G < 1, evaluated on SIMD
-  /// lanes (gaugeLanes, within a few ulps of the scalar gauge: a vertex that close to the
-  /// surface is solved and kept only if its solved distance is negative, penetrating()).
+  /// lanes (gaugeLanes, within a few ulps of the scalar gauge). With depths, a vertex that close
+  /// to the surface is solved and kept only if its solved distance is negative (penetrating());
+  /// without, the lanes' gauge decides alone, as the scalar gauge did before, to a few ulps.
   void testForCollision(const std::vector<int>& vertices) {
     const std::size_t n = vertices.size();
     if (n == 0) return;
