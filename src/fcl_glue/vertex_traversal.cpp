@@ -366,9 +366,12 @@ class VertexTraversal {
     const std::size_t padded = (n + kMaxLanes - 1) / kMaxLanes * kMaxLanes;
     for (std::vector<S>& coordinate : lane_query_) coordinate.resize(padded);
     lane_gauge_.resize(padded);
-    for (std::size_t k = 0; k < padded; ++k) {  // the padding repeats the last vertex
-      const Vector3<S> p_S = inShapeFrame(vertices[std::min(k, n - 1)]).cwiseAbs();
+    for (std::size_t k = 0; k < n; ++k) {
+      const Vector3<S> p_S = inShapeFrame(vertices[k]).cwiseAbs();
       for (int i = 0; i < 3; ++i) lane_query_[i][k] = p_S[i];
+    }
+    for (std::vector<S>& coordinate : lane_query_) {  // the padding repeats the last vertex
+      std::fill(coordinate.begin() + std::ptrdiff_t(n), coordinate.end(), coordinate[n - 1]);
     }
     const S* const query[3] = {lane_query_[0].data(), lane_query_[1].data(), lane_query_[2].data()};
     gaugeLanes(gauge_, query, lane_gauge_.data(), padded);

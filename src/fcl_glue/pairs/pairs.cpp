@@ -72,7 +72,7 @@ std::optional<PairHit<S>> shapeHit(const Pair<S>& pair) {
 /// coordinate beyond a sixteenth of the largest finite value (its features' coordinates, sums
 /// of a few of them, must stay finite; docs/hardening.md → "Bad input").
 template <typename S>
-void checkOther(const char* where, const fcl::CollisionGeometry<S>* other, fcl::NODE_TYPE type) {
+void checkOther(const char* where, const Pair<S>& pair) {
   const S limit = std::numeric_limits<S>::max() / 16;
   auto length = [&](const char* name, S v) {
     if (!(v >= S(0) && v <= limit)) {
@@ -97,45 +97,44 @@ void checkOther(const char* where, const fcl::CollisionGeometry<S>* other, fcl::
     point("normal n", x.n);
     length("|d|", std::abs(x.d));
   };
-  switch (type) {
+  switch (pair.other_type) {
     case fcl::GEOM_SPHERE:
-      if (const auto* x = geometryAs<fcl::Sphere<S>>(other, type, fcl::GEOM_SPHERE)) {
+      if (const auto* x = otherAs<fcl::Sphere<S>>(pair, fcl::GEOM_SPHERE)) {
         length("radius", x->radius);
       }
       break;
     case fcl::GEOM_ELLIPSOID:
-      if (const auto* x = geometryAs<fcl::Ellipsoid<S>>(other, type, fcl::GEOM_ELLIPSOID)) {
+      if (const auto* x = otherAs<fcl::Ellipsoid<S>>(pair, fcl::GEOM_ELLIPSOID)) {
         for (int i = 0; i < 3; ++i) length("radii", x->radii[i]);
       }
       break;
     case fcl::GEOM_BOX:
-      if (const auto* x = geometryAs<fcl::Box<S>>(other, type, fcl::GEOM_BOX)) {
+      if (const auto* x = otherAs<fcl::Box<S>>(pair, fcl::GEOM_BOX)) {
         for (int i = 0; i < 3; ++i) length("side", x->side[i]);
       }
       break;
     case fcl::GEOM_CAPSULE:
-      if (const auto* x = geometryAs<fcl::Capsule<S>>(other, type, fcl::GEOM_CAPSULE)) round(*x);
+      if (const auto* x = otherAs<fcl::Capsule<S>>(pair, fcl::GEOM_CAPSULE)) round(*x);
       break;
     case fcl::GEOM_CYLINDER:
-      if (const auto* x = geometryAs<fcl::Cylinder<S>>(other, type, fcl::GEOM_CYLINDER)) round(*x);
+      if (const auto* x = otherAs<fcl::Cylinder<S>>(pair, fcl::GEOM_CYLINDER)) round(*x);
       break;
     case fcl::GEOM_CONE:
-      if (const auto* x = geometryAs<fcl::Cone<S>>(other, type, fcl::GEOM_CONE)) round(*x);
+      if (const auto* x = otherAs<fcl::Cone<S>>(pair, fcl::GEOM_CONE)) round(*x);
       break;
     case fcl::GEOM_HALFSPACE:
-      if (const auto* x = geometryAs<fcl::Halfspace<S>>(other, type, fcl::GEOM_HALFSPACE))
-        plane(*x);
+      if (const auto* x = otherAs<fcl::Halfspace<S>>(pair, fcl::GEOM_HALFSPACE)) plane(*x);
       break;
     case fcl::GEOM_PLANE:
-      if (const auto* x = geometryAs<fcl::Plane<S>>(other, type, fcl::GEOM_PLANE)) plane(*x);
+      if (const auto* x = otherAs<fcl::Plane<S>>(pair, fcl::GEOM_PLANE)) plane(*x);
       break;
     case fcl::GEOM_CONVEX:
-      if (const auto* x = geometryAs<fcl::Convex<S>>(other, type, fcl::GEOM_CONVEX)) {
+      if (const auto* x = otherAs<fcl::Convex<S>>(pair, fcl::GEOM_CONVEX)) {
         for (const Vector3<S>& v : x->getVertices()) point("vertex", v);
       }
       break;
     case fcl::GEOM_TRIANGLE:
-      if (const auto* x = geometryAs<fcl::TriangleP<S>>(other, type, fcl::GEOM_TRIANGLE)) {
+      if (const auto* x = otherAs<fcl::TriangleP<S>>(pair, fcl::GEOM_TRIANGLE)) {
         point("vertex a", x->a);
         point("vertex b", x->b);
         point("vertex c", x->c);
@@ -171,7 +170,7 @@ S pairDistance(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf
     if (isMesh(pair)) {
       if (const std::optional<S> answer = meshDistance(pair, request, result)) return *answer;
     }
-    if (!isMesh(pair)) checkOther("superellipsoid distance", pair.other, pair.other_type);
+    if (!isMesh(pair)) checkOther("superellipsoid distance", pair);
     if (const std::optional<PairHit<S>> hit = shapeHit(pair)) {
       updateDistance(pair, *hit, request, result);
       return result.min_distance;
@@ -192,7 +191,7 @@ std::size_t pairCollide(const fcl::CollisionGeometry<S>* o1, const fcl::Transfor
     if (request.num_max_contacts <= result.numContacts()) return result.numContacts();
     const std::size_t room = request.num_max_contacts - result.numContacts();
     if (isMesh(pair) && meshCollide(pair, request, room, result)) return result.numContacts();
-    if (!isMesh(pair)) checkOther("superellipsoid collide", pair.other, pair.other_type);
+    if (!isMesh(pair)) checkOther("superellipsoid collide", pair);
     if (const std::optional<PairHit<S>> hit = shapeHit(pair)) {
       // One contact where they overlap, halfway between the two surfaces.
       if (hit->distance < S(0)) {

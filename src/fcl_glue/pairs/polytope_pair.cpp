@@ -96,17 +96,17 @@ void finish(Polytope<S>& p) {
 }
 
 template <typename S>
-std::optional<Polytope<S>> polytopeOf(const fcl::CollisionGeometry<S>* other,
-                                      const fcl::Transform3<S>& X) {
+std::optional<Polytope<S>> polytopeOf(const Pair<S>& pair) {
+  const fcl::Transform3<S>& X = *pair.X_WO;
   Polytope<S> p;
-  if (const auto* box = geometryAs<fcl::Box<S>>(other, fcl::GEOM_BOX)) {
+  if (const auto* box = otherAs<fcl::Box<S>>(pair, fcl::GEOM_BOX)) {
     const Vector3<S> h = box->side / 2;
     for (int i = 0; i < 8; ++i) {
       p.vertices.push_back(
           X * Vector3<S>((i & 1) ? h[0] : -h[0], (i & 2) ? h[1] : -h[1], (i & 4) ? h[2] : -h[2]));
     }
     p.faces = {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}};
-  } else if (const auto* convex = geometryAs<fcl::Convex<S>>(other, fcl::GEOM_CONVEX)) {
+  } else if (const auto* convex = otherAs<fcl::Convex<S>>(pair, fcl::GEOM_CONVEX)) {
     for (const Vector3<S>& v : convex->getVertices()) p.vertices.push_back(X * v);
     const std::vector<int>& list = convex->getFaces();
     for (std::size_t k = 0, f = 0;
@@ -115,7 +115,7 @@ std::optional<Polytope<S>> polytopeOf(const fcl::CollisionGeometry<S>* other,
       p.faces.emplace_back(list.begin() + k + 1, list.begin() + k + 1 + n);
       k += n + 1;
     }
-  } else if (const auto* t = geometryAs<fcl::TriangleP<S>>(other, fcl::GEOM_TRIANGLE)) {
+  } else if (const auto* t = otherAs<fcl::TriangleP<S>>(pair, fcl::GEOM_TRIANGLE)) {
     p.vertices = {X * t->a, X * t->b, X * t->c};
     p.faces = {{0, 1, 2}};
   } else {
@@ -206,7 +206,7 @@ PairHit<S> overlap(const Pair<S>& pair, const Polytope<S>& p, const PairHit<S>& 
 
 template <typename S>
 std::optional<PairHit<S>> polytopeHit(const Pair<S>& pair) {
-  const std::optional<Polytope<S>> p = polytopeOf(pair.other, *pair.X_WO);
+  const std::optional<Polytope<S>> p = polytopeOf(pair);
   if (!p) return std::nullopt;
   return exactPair(
       pair, p->extent, [&](const Vector3<S>& u) { return p->supportPoint(u); },

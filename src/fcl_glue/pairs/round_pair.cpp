@@ -59,13 +59,13 @@ struct Round {
 };
 
 template <typename S>
-std::optional<Round<S>> roundOf(const fcl::CollisionGeometry<S>* other,
-                                const fcl::Transform3<S>& X) {
+std::optional<Round<S>> roundOf(const Pair<S>& pair) {
+  const fcl::Transform3<S>& X = *pair.X_WO;
   Round<S> b;
-  if (const auto* c = geometryAs<fcl::Cylinder<S>>(other, fcl::GEOM_CYLINDER)) {
+  if (const auto* c = otherAs<fcl::Cylinder<S>>(pair, fcl::GEOM_CYLINDER)) {
     b = {false,     X.translation(), X.linear().col(0), X.linear().col(1), X.linear().col(2),
          c->radius, c->lz / 2};
-  } else if (const auto* c = geometryAs<fcl::Cone<S>>(other, fcl::GEOM_CONE)) {
+  } else if (const auto* c = otherAs<fcl::Cone<S>>(pair, fcl::GEOM_CONE)) {
     b = {true,      X.translation(), X.linear().col(0), X.linear().col(1), X.linear().col(2),
          c->radius, c->lz / 2};
   } else {
@@ -200,7 +200,7 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
 
 template <typename S>
 std::optional<PairHit<S>> roundHit(const Pair<S>& pair) {
-  const std::optional<Round<S>> b = roundOf(pair.other, *pair.X_WO);
+  const std::optional<Round<S>> b = roundOf(pair);
   if (!b) return std::nullopt;
   const S extent = std::hypot(b->r, b->h);
   return exactPair(
