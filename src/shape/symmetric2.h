@@ -6,26 +6,53 @@
 // need them: without cancellation where one is many orders of magnitude above the other (near
 // a face or a crease, where mean − half-gap rounds the smaller one to nothing).
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace fcl_superellipsoid {
 namespace detail {
 
+/// 2^e, for the constants below.
+template <typename S>
+constexpr S powerOfTwo(int e) {
+  S r = S(1);
+  for (; e > 0; --e) r *= S(2);
+  for (; e < 0; ++e) r /= S(2);
+  return r;
+}
+
+/// √(a² + b²) without overflow or underflow. std::hypot scales its arguments on every call and
+/// costs as much as a power; the Newton iterations take two or three of these each. Where the
+/// larger magnitude m lies within 2^±(max_exponent/2 − 2) (2^±510 in double), the squares
+/// neither overflow nor lose m's digits (the smaller square may underflow only where it is
+/// below m's last digit), so the plain formula is within an ulp of std::hypot; outside that
+/// range, and for infinities and NaN, std::hypot answers.
+template <typename S>
+S hypot2(S a, S b) {
+  constexpr int kHalf = std::numeric_limits<S>::max_exponent / 2 - 2;
+  constexpr S kLow = powerOfTwo<S>(-kHalf), kHigh = powerOfTwo<S>(kHalf);
+  const S m = std::max(std::abs(a), std::abs(b));
+  if (m >= kLow && m <= kHigh) return std::sqrt(a * a + b * b);
+  return std::hypot(a, b);
+}
+
 template <typename S>
 struct Eigenvalues2 {
   S lowest, highest;
+  S half_gap;  // √(((b11 − b22)/2)² + b12²), half their distance
 };
 
 /// The eigenvalue of larger magnitude is mean ± half-gap (no cancellation); the other is
 /// det / that one.
 template <typename S>
 Eigenvalues2<S> eigenvalues2(S b11, S b12, S b22) {
-  const S mean = (b11 + b22) / 2, half_gap = std::hypot((b11 - b22) / 2, b12);
+  const S mean = (b11 + b22) / 2, half_gap = hypot2((b11 - b22) / 2, b12);
   const S det = std::fma(b11, b22, -b12 * b12);
   const bool positive = mean >= S(0);
   const S big = positive ? mean + half_gap : mean - half_gap;
   const S small = big != S(0) ? det / big : S(0);
-  return positive ? Eigenvalues2<S>{small, big} : Eigenvalues2<S>{big, small};
+  return positive ? Eigenvalues2<S>{small, big, half_gap} : Eigenvalues2<S>{big, small, half_gap};
 }
 
 }  // namespace detail

@@ -83,8 +83,8 @@ struct TangentBlock {
 /// (batch_kernel.cpp, tangentSteps) computes the same formulas lane by lane.
 template <typename S>
 TangentBlock<S> convexifiedTangentBlock(S b11, S b12, S b22, S scale) {
-  const S half_diff = (b11 - b22) / 2, half_gap = std::hypot(half_diff, b12);
-  const auto [lowest, highest] = eigenvalues2(b11, b12, b22);  // no cancellation beside a crease
+  const auto [lowest, highest, half_gap] = eigenvalues2(b11, b12, b22);  // no cancellation
+  const S half_diff = (b11 - b22) / 2;
   const S below = S(kConvexifyBelow) * scale, wanted = S(kConvexifyTo) * scale;
   if (!(lowest < below) || !std::isfinite(lowest)) return {b11, b12, b22, false, false};
   // The unit eigenvector (c, s) of the lowest eigenvalue, from the column of B − lowest·I with
@@ -96,7 +96,7 @@ TangentBlock<S> convexifiedTangentBlock(S b11, S b12, S b22, S scale) {
     c = half_diff - half_gap;
     s = b12;
   }
-  const S length = std::hypot(c, s);
+  const S length = hypot2(c, s);
   if (length > S(0)) {
     c /= length;
     s /= length;

@@ -74,8 +74,10 @@ class ExactSolver {
         primal_first_(primalIsSmoother(q.shape)) {}
 
   PointDistanceResult<S> solve() {
-    const S g_y = primal_.value(y_);
-    if (g_y == S(1)) return finish(candidateOnRay(y_), false);
+    // One evaluation at Q gives both G(Q), which says the side, and the radial start.
+    const NestedNormEval<S> at_y = primal_.evaluate(y_, true);
+    const S g_y = at_y.value;
+    if (g_y == S(1)) return finish(candidateFrom(y_, at_y), false);
     inside_ = g_y < S(1);
     sign_ = inside_ ? S(-1) : S(1);
     if (g_y == S(0)) {
@@ -86,8 +88,9 @@ class ExactSolver {
 
     const bool warm = !inside_ && q_.hint != nullptr && !q_.hint->isZero(S(0));
     // Outside the problem is convex: a warm start that converges is the answer.
-    Candidate<S> best = refine(candidateOnRay(warm ? Vector3<S>(q_.hint->cwiseAbs()) : y_));
-    if (warm && best.error > q_.tolerance) tryStart(y_, &best);
+    const Candidate<S> radial = candidateFrom(y_, at_y);
+    Candidate<S> best = refine(warm ? candidateOnRay(q_.hint->cwiseAbs()) : radial);
+    if (warm && best.error > q_.tolerance) tryStart(radial, &best);
     if (!inside_ && best.error > q_.tolerance) {
       // On elongated shapes the radial start can be far off. The surface points whose normal
       // points at Q, and along the best answer's contact direction, are better starts.
@@ -261,7 +264,11 @@ class ExactSolver {
 
   /// Runs Newton from a start (the ray's surface point) and keeps the result if it beats best.
   void tryStart(const Vector3<S>& ray, Candidate<S>* best, int share = rules::kIterationsPerStart) {
-    const Candidate<S> c = refine(candidateOnRay(ray), share);
+    tryStart(candidateOnRay(ray), best, share);
+  }
+  void tryStart(const Candidate<S>& start, Candidate<S>* best,
+                int share = rules::kIterationsPerStart) {
+    const Candidate<S> c = refine(start, share);
     noteSurfacePoint(c.point);
     if (isBetter(c, *best)) *best = c;
   }
@@ -299,8 +306,12 @@ class ExactSolver {
   /// gradient and Hessian there, from one evaluation at `ray` itself: ∇G is 0-homogeneous and
   /// ∇²G is (−1)-homogeneous, so at N = ray/G(ray) they are ∇G(ray) and G(ray)·∇²G(ray).
   Candidate<S> candidateOnRay(const Vector3<S>& ray) const {
+    return candidateFrom(ray, primal_.evaluate(ray, true));
+  }
+
+  /// The same from G's evaluation `e` (with the Hessian) at `ray`.
+  Candidate<S> candidateFrom(const Vector3<S>& ray, const NestedNormEval<S>& e) const {
     Candidate<S> c;
-    const NestedNormEval<S> e = primal_.evaluate(ray, true);
     c.point = ray / e.value;
     c.gradient = e.gradient;
     c.hessian = e.value * e.hessian;

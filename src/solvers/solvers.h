@@ -86,8 +86,7 @@ PointDistanceResult<S> fromFirstOctant(const Vector3<S>& q, const Vector3<S>& po
   PointDistanceResult<S> r;
   r.nearest_point = intoOctantOf(q, point);
   r.normal = intoOctantOf(q, normal);
-  const S len = (q - r.nearest_point).norm();
-  r.distance = inside ? -len : len;
+  r.distance = negatedWhere(inside, (q - r.nearest_point).norm());
   return r;
 }
 

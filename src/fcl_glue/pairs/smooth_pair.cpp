@@ -6,6 +6,8 @@
 #include <limits>
 #include <vector>
 
+#include "shape/symmetric2.h"
+
 namespace fcl_superellipsoid {
 namespace detail {
 namespace {
@@ -54,7 +56,7 @@ Probe<S> localMinimum(const SupportMap<S>& A, const SupportMap<S>& B, const Vect
     S h11 = t1.dot(p.hessian * t1) - p.f, h22 = t2.dot(p.hessian * t2) - p.f;
     const S h12 = t1.dot(p.hessian * t2);
     const S scale = std::abs(h11) + std::abs(h22) + std::abs(p.f) + std::numeric_limits<S>::min();
-    const S lowest = S(0.5) * (h11 + h22) - std::hypot(S(0.5) * (h11 - h22), h12);
+    const S lowest = S(0.5) * (h11 + h22) - hypot2(S(0.5) * (h11 - h22), h12);
     const S floor = S(1e-8) * scale;
     if (!(lowest > floor)) {
       const S shift = floor - (std::isfinite(lowest) ? lowest : -scale);
@@ -65,7 +67,7 @@ Probe<S> localMinimum(const SupportMap<S>& A, const SupportMap<S>& B, const Vect
     S x1 = -(h22 * g1 - h12 * g2) / det, x2 = -(h11 * g2 - h12 * g1) / det;
     if (!std::isfinite(x1) || !std::isfinite(x2)) break;
     // A step of more than a quarter turn is not Newton's any more.
-    const S length = std::hypot(x1, x2);
+    const S length = hypot2(x1, x2);
     if (length > S(0.5)) {
       x1 *= S(0.5) / length;
       x2 *= S(0.5) / length;
@@ -83,7 +85,7 @@ Probe<S> localMinimum(const SupportMap<S>& A, const SupportMap<S>& B, const Vect
         break;
       }
     }
-    if (!moved || std::hypot(x1, x2) < S(64) * eps) break;
+    if (!moved || length < S(64) * eps) break;
   }
   return p;
 }
