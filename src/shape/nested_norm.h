@@ -71,6 +71,27 @@ inline PNorm2<S> pnorm2WithPowers(S a, S b, S p, S inv_p) {
   return a >= b ? PNorm2<S>{n, pow_m, pow_lo} : PNorm2<S>{n, pow_lo, pow_m};
 }
 
+/// pnorm2WithPowers with the powers as exp2(p·log2 t), given log2 of the ratio lo/m (−∞ where
+/// lo = 0); also gives log2(1 + q), from which a second level can take its ratio's logarithm
+/// before this level's norm is known (NestedNorm::gradient).
+template <typename S>
+inline PNorm2<S> pnorm2WithPowersLog2(S a, S b, S p, S inv_p, S log2_ratio, S* log2_1pq) {
+  const S m = std::max(a, b);
+  *log2_1pq = S(0);
+  if (!(m > S(0))) return {S(0), S(0), S(0)};
+  const S lo = std::min(a, b);
+  const S q = lo > S(0) ? std::exp2(p * log2_ratio) : S(0);
+  *log2_1pq = std::log2(S(1) + q);
+  const S w = std::exp2(inv_p * *log2_1pq);
+  const S pow_m = w / (S(1) + q);
+  S pow_lo = S(0);
+  if (lo > S(0)) {
+    const S ratio = lo / m;
+    pow_lo = (q >= std::numeric_limits<S>::min() ? q / ratio : std::pow(ratio, p - S(1))) * pow_m;
+  }
+  return a >= b ? PNorm2<S>{m * w, pow_m, pow_lo} : PNorm2<S>{m * w, pow_lo, pow_m};
+}
+
 /// sgn(c)·|c|^e, the signed power of the parametric form.
 template <typename S>
 inline S signedPow(S c, S e) {
@@ -105,6 +126,36 @@ struct NestedNorm {
   S value(const Vector3<S>& w) const {
     const Vector3<S> u = w.cwiseProduct(scale);
     return pnorm2(pnorm2(u[0], u[1], p1, inv_p1), u[2], p2, inv_p2);
+  }
+
+  /// The gradient alone at w ≥ 0, as evaluate(w, false).gradient, for callers that wait on
+  /// it (Superellipsoid::supportPoint: the halfspace and plane pairs, GJK's support). Each
+  /// level's powers are exp2(p·log2 t), and the second level's ratio is taken from logarithms,
+  /// log2 t2 = −|log2(m1/u3) + log2(1 + q1)/p1|, the first term computed beside the first
+  /// level (the SIMD kernel's idea, batch_kernel.h): a chain of short libm calls that does not
+  /// wait for the first level's norm, instead of four pow()s in a row.
+  /// Within a few ulps of evaluate's (docs/math.md → "Support function and the dual shape").
+  Vector3<S> gradient(const Vector3<S>& w) const {
+    const Vector3<S> u = w.cwiseProduct(scale);
+    const S inf = std::numeric_limits<S>::infinity();
+    const S m1 = std::max(u[0], u[1]), lo1 = std::min(u[0], u[1]);
+    // log2(m1/u3) of the quotient, not as a difference of logarithms: its error stays an ulp
+    // of the result at any scale (a difference of two logarithms near −1000, on a shape of
+    // radius 1e-300, would carry ulps of 1000). An over- or underflowing quotient gives ±∞,
+    // and so the ratio 0 it stands for.
+    const S log2_m1_u3 = m1 > S(0) && u[2] > S(0) ? std::log2(m1 / u[2]) : -inf;
+    S log2_1pq1, log2_1pq2;
+    const PNorm2<S> level1 = pnorm2WithPowersLog2(
+        u[0], u[1], p1, inv_p1, lo1 > S(0) ? std::log2(lo1 / m1) : -inf, &log2_1pq1);
+    // r/u3 = (m1/u3)·(1 + q1)^(1/p1)
+    const S log2_ratio2 = level1.norm > S(0) && u[2] > S(0)
+                              ? -std::abs(log2_m1_u3 + inv_p1 * log2_1pq1)
+                              : -inf;
+    const PNorm2<S> level2 =
+        pnorm2WithPowersLog2(level1.norm, u[2], p2, inv_p2, log2_ratio2, &log2_1pq2);
+    if (!(level2.norm > S(0))) return Vector3<S>::Zero();
+    return Vector3<S>(level2.pow_a * level1.pow_a, level2.pow_a * level1.pow_b, level2.pow_b)
+        .cwiseProduct(scale);
   }
 
   /// Value, gradient and (if with_hessian) Hessian at w ≥ 0.

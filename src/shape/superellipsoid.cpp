@@ -176,7 +176,7 @@ Vector3<S> Superellipsoid<S>::supportPoint(const Vector3<S>& direction) const {
   if (direction.isZero(S(0))) return Vector3<S>(radii_[0], S(0), S(0));
   // ∇h is 0-homogeneous: divide by the largest component so nothing overflows.
   const Vector3<S> w = direction.cwiseAbs() / direction.cwiseAbs().maxCoeff();
-  const Vector3<S> p = detail::NestedNorm<S>::support(*this).evaluate(w, false).gradient;
+  const Vector3<S> p = detail::NestedNorm<S>::support(*this).gradient(w);
   return detail::intoOctantOf(direction, p);
 }
 
