@@ -121,13 +121,16 @@ class DepthCandidates {
   }
 
   /// F's minimum near the best direction so far: a pattern search on the sphere (16 directions,
-  /// the step halved from 0.1 rad to 1e-9 rad), which needs no derivative, since F has kinks
+  /// the step quartered from 0.1 rad to 1e-9 rad), which needs no derivative, since F has kinks
   /// where the other shape's supporting feature changes. Then the best: distance −F, the shape's
   /// support point, the other's witness moved back by the depth along v (so that
   /// on_shape − on_other = depth·v).
   PairHit<S> refinedBest() {
+    // The best candidate is usually a minimiser already, and every level ends with all 16 polls
+    // failing: quartering the step instead of halving it took the overlapping polytopes about
+    // a fifth faster, with the same depths on 720 random overlaps (docs/math.md).
     constexpr int kPolls = 16, kMovesPerStep = 64;
-    for (S step = S(0.1); has_best_ && step > S(1e-9); step *= S(0.5)) {
+    for (S step = S(0.1); has_best_ && step > S(1e-9); step *= S(0.25)) {
       for (int moves = 0; moves < kMovesPerStep; ++moves) {
         const Vector3<S> v = v_, t1 = v.unitOrthogonal(), t2 = v.cross(t1);
         const S f = f_;
