@@ -17,9 +17,11 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "fcl_glue/pairs/candidates.h"
 #include "fcl_glue/pairs/segment_search.h"
+#include "fcl_superellipsoid/batch_distance.h"
 
 namespace fcl_superellipsoid {
 namespace detail {
@@ -53,6 +55,24 @@ class DepthCandidates {
         pointDistance(*pair_.shape, *pair_.X_WS, w, pair_.shape->queryOptions());
     offerDirection(r.normal);
     return r.distance;
+  }
+
+  /// offerPoint for several points at once, through the batched queries (SIMD lanes, the
+  /// calling thread only): their signed distances to the superellipsoid, in order.
+  std::vector<S> offerPoints(const std::vector<Vector3<S>>& points) {
+    Matrix3X<S> p_W(3, Eigen::Index(points.size()));
+    for (std::size_t i = 0; i < points.size(); ++i) p_W.col(Eigen::Index(i)) = points[i];
+    BatchOptions<S> options;
+    options.distance = pair_.shape->queryOptions();
+    options.threads = 1;
+    BatchDistanceResult<S> r;
+    batchDistance(*pair_.shape, *pair_.X_WS, p_W, r, options);
+    std::vector<S> distance(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      offerDirection(r.normal.col(Eigen::Index(i)));
+      distance[i] = r.distance[Eigen::Index(i)];
+    }
+    return distance;
   }
 
   /// A point w of the other shape, from a start direction: a steepest descent of

@@ -191,12 +191,13 @@ PairHit<S> overlap(const Pair<S>& pair, const Polytope<S>& p, const PairHit<S>& 
   for (const Vector3<S>& n : p.normals) depth.offerDirection(Vector3<S>(-n));
   Vector3<S> centroid = Vector3<S>::Zero();
   for (const Vector3<S>& w : p.vertices) centroid += w / S(p.vertices.size());
-  for (const Vector3<S>& w : p.vertices) {
-    // A vertex inside the superellipsoid also descends from inside its own region (where F is
-    // its h_A(v) − v·w, which can have a second local minimum there: the case the tests found).
-    // Vertices outside are left to the other candidates, to keep the cost down (a choice, not
-    // a proof: docs/math.md).
-    if (depth.offerPoint(w) < S(0)) depth.offerDescent(w, Vector3<S>(centroid - w));
+  // A vertex inside the superellipsoid also descends from inside its own region (where F is its
+  // h_A(v) − v·w, which can have a second local minimum there: the case the tests found).
+  // Vertices outside are left to the other candidates, to keep the cost down (a choice, not a
+  // proof: docs/math.md).
+  const std::vector<S> distance = depth.offerPoints(p.vertices);
+  for (std::size_t i = 0; i < p.vertices.size(); ++i) {
+    if (distance[i] < S(0)) depth.offerDescent(p.vertices[i], Vector3<S>(centroid - p.vertices[i]));
   }
   for (const auto& [i, j] : p.edges) depth.offerEdge(p.vertices[i], p.vertices[j]);
   return depth.refinedBest();

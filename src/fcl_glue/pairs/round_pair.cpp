@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "fcl_glue/pairs/candidates.h"
 #include "fcl_glue/pairs/depth_candidates.h"
@@ -185,14 +186,15 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
   };
   depth.offerFamily(direction, derivative);
   constexpr int kRimPoints = 12;
+  std::vector<Vector3<S>> points;
   for (S side : {S(1), S(-1)}) {
     if (b.cone && side > S(0)) continue;
     for (int k = 0; k < kRimPoints; ++k) {
-      depth.offerPoint(
-          Vector3<S>(b.t + side * b.h * b.z + b.r * b.circle(S(2 * M_PI * k / kRimPoints))));
+      points.push_back(b.t + side * b.h * b.z + b.r * b.circle(S(2 * M_PI * k / kRimPoints)));
     }
   }
-  if (b.cone) depth.offerPoint(Vector3<S>(b.t + b.h * b.z));
+  if (b.cone) points.push_back(b.t + b.h * b.z);
+  depth.offerPoints(points);
   return depth.refinedBest();
 }
 
