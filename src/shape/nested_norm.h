@@ -148,9 +148,8 @@ struct NestedNorm {
     const PNorm2<S> level1 = pnorm2WithPowersLog2(
         u[0], u[1], p1, inv_p1, lo1 > S(0) ? std::log2(lo1 / m1) : -inf, &log2_1pq1);
     // r/u3 = (m1/u3)·(1 + q1)^(1/p1)
-    const S log2_ratio2 = level1.norm > S(0) && u[2] > S(0)
-                              ? -std::abs(log2_m1_u3 + inv_p1 * log2_1pq1)
-                              : -inf;
+    const S log2_ratio2 =
+        level1.norm > S(0) && u[2] > S(0) ? -std::abs(log2_m1_u3 + inv_p1 * log2_1pq1) : -inf;
     const PNorm2<S> level2 =
         pnorm2WithPowersLog2(level1.norm, u[2], p2, inv_p2, log2_ratio2, &log2_1pq2);
     if (!(level2.norm > S(0))) return Vector3<S>::Zero();
