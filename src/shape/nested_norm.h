@@ -72,17 +72,18 @@ inline PNorm2<S> pnorm2WithPowers(S a, S b, S p, S inv_p) {
 }
 
 /// pnorm2WithPowers with the powers as exp2(p·log2 t), given log2 of the ratio lo/m (−∞ where
-/// lo = 0); also gives log2(1 + q), from which a second level can take its ratio's logarithm
-/// before this level's norm is known (NestedNorm::gradient).
+/// lo = 0); also gives log2(1 + q), if asked (log2_1pq not null), from which a second level can
+/// take its ratio's logarithm before this level's norm is known (NestedNorm::gradient).
 template <typename S>
 inline PNorm2<S> pnorm2WithPowersLog2(S a, S b, S p, S inv_p, S log2_ratio, S* log2_1pq) {
   const S m = std::max(a, b);
-  *log2_1pq = S(0);
+  if (log2_1pq != nullptr) *log2_1pq = S(0);
   if (!(m > S(0))) return {S(0), S(0), S(0)};
   const S lo = std::min(a, b);
   const S q = lo > S(0) ? std::exp2(p * log2_ratio) : S(0);
-  *log2_1pq = std::log2(S(1) + q);
-  const S w = std::exp2(inv_p * *log2_1pq);
+  const S log2_one_plus_q = std::log2(S(1) + q);
+  if (log2_1pq != nullptr) *log2_1pq = log2_one_plus_q;
+  const S w = std::exp2(inv_p * log2_one_plus_q);
   const S pow_m = w / (S(1) + q);
   S pow_lo = S(0);
   if (lo > S(0)) {
@@ -144,14 +145,14 @@ struct NestedNorm {
     // radius 1e-300, would carry ulps of 1000). An over- or underflowing quotient gives ±∞,
     // and so the ratio 0 it stands for.
     const S log2_m1_u3 = m1 > S(0) && u[2] > S(0) ? std::log2(m1 / u[2]) : -inf;
-    S log2_1pq1, log2_1pq2;
+    S log2_1pq1;
     const PNorm2<S> level1 = pnorm2WithPowersLog2(
         u[0], u[1], p1, inv_p1, lo1 > S(0) ? std::log2(lo1 / m1) : -inf, &log2_1pq1);
     // r/u3 = (m1/u3)·(1 + q1)^(1/p1)
     const S log2_ratio2 =
         level1.norm > S(0) && u[2] > S(0) ? -std::abs(log2_m1_u3 + inv_p1 * log2_1pq1) : -inf;
     const PNorm2<S> level2 =
-        pnorm2WithPowersLog2(level1.norm, u[2], p2, inv_p2, log2_ratio2, &log2_1pq2);
+        pnorm2WithPowersLog2<S>(level1.norm, u[2], p2, inv_p2, log2_ratio2, nullptr);
     if (!(level2.norm > S(0))) return Vector3<S>::Zero();
     return Vector3<S>(level2.pow_a * level1.pow_a, level2.pow_a * level1.pow_b, level2.pow_b)
         .cwiseProduct(scale);

@@ -28,8 +28,7 @@ std::optional<PairHit<S>> capsuleHit(const Pair<S>& pair) {
     if (const std::optional<PairHit<S>> start = libccdHit(pair)) {
       depth.offerDirection(start->normal);
     }
-    depth.offerPoint(p0);
-    depth.offerPoint(p1);
+    depth.offerPoints({p0, p1});
     depth.offerEdge(p0, p1);
     return depth.refinedBest();
   }

@@ -48,17 +48,10 @@ class DepthCandidates {
     return f;
   }
 
-  /// A point of the other shape (a vertex, the apex, a rim point): its escape direction.
-  /// Returns its signed distance to the superellipsoid (negative: inside).
-  S offerPoint(const Vector3<S>& w) {
-    const PointDistanceResult<S> r =
-        pointDistance(*pair_.shape, *pair_.X_WS, w, pair_.shape->queryOptions());
-    offerDirection(r.normal);
-    return r.distance;
-  }
-
-  /// offerPoint for several points at once, through the batched queries (SIMD lanes, the
-  /// calling thread only): their signed distances to the superellipsoid, in order.
+  /// Points of the other shape (vertices, the apex, rim points, a capsule's ends): each one's
+  /// escape direction, the outward normal at its nearest point on the superellipsoid, through
+  /// the batched queries (SIMD lanes, the calling thread only). Returns their signed distances
+  /// to the superellipsoid (negative: inside), in order.
   std::vector<S> offerPoints(const std::vector<Vector3<S>>& points) {
     Matrix3X<S> p_W(3, Eigen::Index(points.size()));
     for (std::size_t i = 0; i < points.size(); ++i) p_W.col(Eigen::Index(i)) = points[i];
@@ -77,7 +70,7 @@ class DepthCandidates {
 
   /// A point w of the other shape, from a start direction: a steepest descent of
   /// f(v) = h_A(v) − v·w on the sphere (gradient (I − vvᵀ)(s_A(v) − w), the step an angle that
-  /// grows by 1.5 on success and halves on failure), then its end offered. offerPoint gives
+  /// grows by 1.5 on success and halves on failure), then its end offered. offerPoints gives
   /// f's minimum over the whole sphere; where w supports the other shape only in a region
   /// elsewhere, f may have a second local minimum inside that region, which is F's there.
   void offerDescent(const Vector3<S>& w, const Vector3<S>& start) {
