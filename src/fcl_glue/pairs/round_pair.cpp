@@ -180,11 +180,10 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
   depth.offerDirection(Vector3<S>(b.z));  // the base (cone, cylinder): v = −n = z
   if (!b.cone) depth.offerDirection(Vector3<S>(-b.z));
   auto direction = [&](S theta) { return Vector3<S>(-b.sideNormal(theta)); };
-  auto derivative = [&](S theta) {
-    const Vector3<S> m = b.sideNormal(theta);
-    return b.sideNormalDerivative(theta).dot(b.sideAnchor() - shapeSupport(pair, Vector3<S>(-m)));
+  auto derivative = [&](S theta, const Vector3<S>&, const Vector3<S>& a) {
+    return b.sideNormalDerivative(theta).dot(b.sideAnchor() - a);
   };
-  depth.offerFamily(direction, derivative);
+  depth.offerFamily(direction, derivative, S(0), S(2 * M_PI), true);
   constexpr int kRimPoints = 12;
   std::vector<Vector3<S>> points;
   for (S side : {S(1), S(-1)}) {
