@@ -58,7 +58,7 @@ struct Candidate {
   Vector3<S> point;                // on the surface
   Vector3<S> normal;               // unit outward normal at point
   Vector3<S> gradient;             // ∇G at point
-  Eigen::Matrix<S, 3, 3> hessian;  // ∇²G at point
+  Eigen::Matrix<S, 3, 3> hessian;  // ∇²G at point (NaN: a converged dual answer, newtonDual)
   S error = std::numeric_limits<S>::infinity();
   int iterations = 0;
 };
@@ -449,11 +449,41 @@ class ExactSolver {
     return c;
   }
 
+  /// h's evaluation at a candidate's normal n from the candidate's own primal evaluation: ∇h(n)
+  /// is the candidate's point, and on the tangent plane ∇²h(n) is the inverse of the shape
+  /// operator W = Tᵀ∇²G·T/‖∇G‖ (dX = ∇²h·dn, dn = W·dX; ∇²h·n = 0, h being 1-homogeneous). Saves
+  /// the dual's first evaluation of each start inside, where the starts are many; h is evaluated
+  /// instead outside (in float, on a flat disc, the derived block sent an outside start astray:
+  /// docs/math.md → "The Exact solver") and where W is not positive definite.
+  NestedNormEval<S> dualAtCandidate(const Candidate<S>& c) const {
+    const Vector3<S>& n = c.normal;
+    const S g = c.gradient.norm();
+    const Vector3<S> helper =
+        std::abs(n[0]) < S(rules::kTangentHelperSwitch) ? Vector3<S>::UnitX() : Vector3<S>::UnitY();
+    const Vector3<S> t1 = n.cross(helper).normalized();
+    const Vector3<S> t2 = n.cross(t1);
+    const S w11 = t1.dot(c.hessian * t1) / g, w22 = t2.dot(c.hessian * t2) / g;
+    const S w12 = t1.dot(c.hessian * t2) / g;
+    const S det = w11 * w22 - w12 * w12;
+    if (!inside_ ||
+        !(w11 > S(0) && det > S(0) && std::isfinite(det) && std::isfinite(w11 + w22 + w12))) {
+      return dual_.evaluate(n, true);
+    }
+    // W⁻¹ = [w22, −w12; −w12, w11]/det, as T·W⁻¹·Tᵀ.
+    const S i11 = w22 / det, i22 = w11 / det, i12 = -w12 / det;
+    NestedNormEval<S> e;
+    e.value = n.dot(c.point);
+    e.gradient = c.point;
+    e.hessian = i11 * t1 * t1.transpose() + i22 * t2 * t2.transpose() +
+                i12 * (t1 * t2.transpose() + t2 * t1.transpose());
+    return e;
+  }
+
   Candidate<S> newtonDual(Candidate<S> c) {
     // The dual iterate is the normal n; its surface point is ∇h(n), whose normal is n itself,
     // so a trial costs one evaluation of h (with the Hessian, reused by the next iteration).
     Vector3<S> n = c.normal;
-    NestedNormEval<S> e = dual_.evaluate(n, true);
+    NestedNormEval<S> e = dualAtCandidate(c);
     bool moved = false;
     Progress progress(c.error, iterations_, inside_);
     while (c.error > q_.tolerance && iterations_ < limit_ && progress.keeps(c.error, iterations_)) {
@@ -504,8 +534,15 @@ class ExactSolver {
       if (!steps.convexified.allFinite() || !try_dual_step(steps.convexified, false)) break;
     }
     // Back to the primal's view of the final point (its own normal, gradient and Hessian), so
-    // the error reported and any primal iterations that follow are the primal's.
+    // the error reported and any primal iterations that follow are the primal's. Converged,
+    // nothing iterates from it: the point ∇h(n) and its normal n stand, with ∇G = n/h(n) there
+    // (the gauge's gradient at the boundary point of normal n) and no Hessian (NaN).
     if (!moved) return c;
+    if (c.error <= q_.tolerance) {
+      c.gradient = c.normal / c.normal.dot(c.point);
+      c.hessian.setConstant(std::numeric_limits<S>::quiet_NaN());
+      return c;
+    }
     Candidate<S> out = candidateOnRay(c.point);
     return out.error <= c.error ? out : Candidate<S>{c.point,     c.normal, out.gradient,
                                                      out.hessian, c.error,  0};
