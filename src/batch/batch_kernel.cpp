@@ -8,7 +8,8 @@
 // thresholds) are read from solvers/exact_rules.h. Like the scalar solver it solves the
 // bordered Newton system in the tangent plane (ExactSolver::tangentSteps). Differences: the dual
 // iteration keeps the dual's normal for its answer instead of re-deriving the primal's at the
-// end (they agree to rounding at a converged point), and a refused full step is halved without
+// end where it has not converged (they agree to rounding; the scalar solver keeps it where it
+// has), and a refused full step is halved without
 // the scalar solver's second-order correction (exact_rules::kStepTrials; the lanes that do not
 // converge go to the scalar solver).
 
@@ -297,9 +298,6 @@ class LaneSolver {
     return candidateFrom(ray, Evaluate(d_, primal_, ray));
   }
 
-  /// The primal's ∇G at `point`.
-  Vec3<D> gradientAt(const Vec3<D>& point) const { return Evaluate(d_, primal_, point).gradient; }
-
   /// The same from the gauge's evaluation `e` at `ray`.
   Candidate<D> candidateFrom(const Vec3<D>& ray, const NormEval<D>& e) const {
     Candidate<D> c;
@@ -512,11 +510,48 @@ class LaneSolver {
     return c;
   }
 
+  /// ExactSolver::dualAtCandidate: inside, h's evaluation at the candidate's normal from its
+  /// primal evaluation (∇h(n) = N; on the tangent plane ∇²h(n) = W⁻¹, W = Tᵀ∇²G·T/‖∇G‖), where
+  /// W is positive definite on every lane of `lanes`; otherwise (and outside) h evaluated.
+  NormEval<D> dualAtCandidate(const Candidate<D>& c, M lanes) const {
+    const Vec3<D>& n = c.normal;
+    if (hn::GetLane(sign_) > T(0)) return Evaluate(d_, dual_, n);
+    const V zero = hn::Zero(d_), one = hn::Set(d_, 1);
+    const auto use_x = hn::Lt(hn::Abs(n.x), hn::Set(d_, T(rules::kTangentHelperSwitch)));
+    Vec3<D> t1 = Select(use_x, Vec3<D>{zero, n.z, hn::Neg(n.y)}, Vec3<D>{hn::Neg(n.z), zero, n.x});
+    t1 = Times(hn::Div(one, hn::Sqrt(Dot(t1, t1))), t1);
+    const Vec3<D> t2 = Cross(n, t1);
+    const V inv_g = hn::Div(one, hn::Sqrt(Dot(c.gradient, c.gradient)));
+    const V w11 = hn::Mul(Dot(t1, c.hessian.times(t1)), inv_g);
+    const V w22 = hn::Mul(Dot(t2, c.hessian.times(t2)), inv_g);
+    const V w12 = hn::Mul(Dot(t1, c.hessian.times(t2)), inv_g);
+    const V det = hn::MulAdd(w11, w22, hn::Neg(hn::Mul(w12, w12)));
+    const M usable = hn::And(hn::And(hn::Gt(w11, zero), hn::Gt(det, zero)),
+                             hn::IsFinite(hn::Add(det, hn::Add(w11, hn::Add(w22, w12)))));
+    if (!hn::AllTrue(d_, hn::Or(usable, hn::Not(lanes)))) return Evaluate(d_, dual_, n);
+    // W⁻¹ = [w22, −w12; −w12, w11]/det, as T·W⁻¹·Tᵀ.
+    const V inv_det = hn::Div(one, det);
+    const V i11 = hn::Mul(w22, inv_det), i22 = hn::Mul(w11, inv_det);
+    const V i12 = hn::Neg(hn::Mul(w12, inv_det));
+    auto entry = [&](V a1, V a2, V b1, V b2) {  // (T·W⁻¹·Tᵀ) at (a, b): a = (t1_a, t2_a)
+      return hn::MulAdd(
+          i11, hn::Mul(a1, b1),
+          hn::MulAdd(i22, hn::Mul(a2, b2), hn::Mul(i12, hn::MulAdd(a1, b2, hn::Mul(a2, b1)))));
+    };
+    NormEval<D> e;
+    e.value = Dot(n, c.point);
+    e.gradient = c.point;
+    e.hessian = {entry(t1.x, t2.x, t1.x, t2.x), entry(t1.x, t2.x, t1.y, t2.y),
+                 entry(t1.x, t2.x, t1.z, t2.z), entry(t1.y, t2.y, t1.y, t2.y),
+                 entry(t1.y, t2.y, t1.z, t2.z), entry(t1.z, t2.z, t1.z, t2.z)};
+    return e;
+  }
+
   /// ExactSolver::newtonDual: the iterate is the unit normal n, its surface point ∇h(n).
   Candidate<D> newtonDual(Candidate<D> c, M lanes, V limit) {
     const V one = hn::Set(d_, 1);
     Vec3<D> n = c.normal;
-    NormEval<D> e = Evaluate(d_, dual_, n);
+    NormEval<D> e = dualAtCandidate(c, lanes);
     M active = stillGoing(lanes, c, limit);
     while (!hn::AllFalse(d_, active)) {
       iterations_ = hn::Add(iterations_, hn::IfThenElseZero(active, one));
@@ -620,12 +655,12 @@ void SolveOutsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
 /// through the scalar solver's own function: converged inside candidates `c` at `distance` from
 /// the queries `y`.
 template <class D>
-hn::Mask<D> HessianBallLanes(D d, const LaneProblem<hn::TFromD<D>>& problem,
-                             const LaneSolver<D>& solver, const Vec3<D>& y, const Candidate<D>& c,
-                             hn::Vec<D> distance, hn::Mask<D> lanes) {
+hn::Mask<D> HessianBallLanes(D d, const LaneProblem<hn::TFromD<D>>& problem, const Vec3<D>& y,
+                             const Candidate<D>& c, hn::Vec<D> distance, hn::Mask<D> lanes) {
   using T = hn::TFromD<D>;
-  // The gradient afresh: after dual iterations a candidate's gradient is its start's.
-  const Vec3<D> gradient = solver.gradientAt(c.point);
+  // After dual iterations a candidate's gradient is its start's: ∇G at the point is n/(n·N)
+  // (the gauge's gradient at the boundary point of normal n; ExactSolver::newtonDual).
+  const Vec3<D> gradient = Times(hn::Div(hn::Set(d, T(1)), Dot(c.normal, c.point)), c.normal);
   T lane[12][kMaxLanes];
   const hn::Vec<D> values[12] = {
       y.x,        y.y,       y.z,        c.point.x,
@@ -683,8 +718,7 @@ void SolveInsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
     const M rolling = hn::And(converged, hn::Le(reach, hn::Set(d, problem.rolling_radius)));
     const M open = hn::And(fresh, hn::AndNot(rolling, converged));
     if (hn::AllFalse(d, open)) return rolling;
-    return hn::Or(rolling,
-                  hn::And(open, HessianBallLanes(d, problem, solver, y, c, distance, open)));
+    return hn::Or(rolling, hn::And(open, HessianBallLanes(d, problem, y, c, distance, open)));
   };
   M done = certified(best, all_converged, work);
   M more = hn::AndNot(done, work);
