@@ -9,11 +9,12 @@
 // is the depth when the candidates include the minimiser. They come from the other shape's
 // features, where F is smooth: a face's normal; a vertex's (or a rim point's) escape direction,
 // the outward normal at its nearest point on the superellipsoid (the point solver), and a
-// vertex's descent from inside its own region (offerDescent); an edge's or
-// a side's one-parameter family of directions, sampled and refined where the restricted F is
-// stationary (segment_search.h); and MPR's normal. A pattern search on the sphere then polishes
-// the best of them, where F's kinks (the other shape's supporting feature changes) leave the
-// minimiser between the families.
+// vertex's Newton descent from inside its own region (offerDescent); an edge's arc or a side's
+// one-parameter family of directions, sampled and refined where the restricted F is stationary
+// (segment_search.h); and MPR's normal. A polytope's candidates include every feature's own
+// minimum, and its best is the answer (best()); a round shape's rim points are samples, and a
+// pattern search on the sphere polishes the best of them (refinedBest()), where F's kinks (the
+// other shape's supporting feature changes) leave the minimiser between the families.
 
 #include <algorithm>
 #include <cmath>
@@ -22,6 +23,7 @@
 
 #include "fcl_glue/pairs/candidates.h"
 #include "fcl_glue/pairs/segment_search.h"
+#include "fcl_glue/pairs/sphere_newton.h"
 #include "fcl_superellipsoid/batch_distance.h"
 
 namespace fcl_superellipsoid {
@@ -60,31 +62,16 @@ class DepthCandidates {
     return distance;
   }
 
-  /// A point w of the other shape, from a start direction: a steepest descent of
-  /// f(v) = h_A(v) − v·w on the sphere (gradient (I − vvᵀ)(s_A(v) − w), the step an angle that
-  /// grows by 1.5 on success and halves on failure), then its end offered. offerPoints gives
-  /// f's minimum over the whole sphere; where w supports the other shape only in a region
-  /// elsewhere, f may have a second local minimum inside that region, which is F's there.
+  /// A point w of the other shape, from a start direction: Newton's method on the sphere for
+  /// f(v) = h_A(v) − v·w (sphere_newton.h, w as a point: h_B(−v) = −v·w), then its end offered.
+  /// offerPoints gives f's minimum over the whole sphere; where w supports the other shape only
+  /// in a region elsewhere, f may have a second local minimum inside that region, which is F's
+  /// there.
   void offerDescent(const Vector3<S>& w, const Vector3<S>& start) {
     if (!start.allFinite() || !(start.norm() > S(0))) return;
-    Vector3<S> v = start.normalized();
-    Vector3<S> a = shapeSupport(pair_, v);
-    S f = v.dot(a - w);
-    S angle = S(0.1);
-    for (int it = 0; it < kDescentSteps && angle > S(1e-6); ++it) {
-      const Vector3<S> g = (a - w) - v.dot(a - w) * v;
-      if (!(g.norm() > S(0))) break;
-      const Vector3<S> trial = (v - angle * g.normalized()).normalized();
-      const Vector3<S> a_trial = shapeSupport(pair_, trial);
-      const S f_trial = trial.dot(a_trial - w);
-      if (f_trial < f) {
-        v = trial, a = a_trial, f = f_trial;
-        angle *= S(1.5);
-      } else {
-        angle *= S(0.5);
-      }
-    }
-    offerDirection(v);
+    const Probe<S> p =
+        localMinimum(SupportMap<S>(*pair_.shape, *pair_.X_WS), SupportMap<S>::ofPoint(w), start);
+    offerDirection(p.v);
   }
 
   /// A one-parameter family of directions v(θ) (unit), θ over [from, to], with derivative(θ, v, a)
@@ -168,8 +155,11 @@ class DepthCandidates {
         if (!(f_ < f)) break;
       }
     }
-    return {-f_, Vector3<S>(a_ - f_ * v_), a_, v_, -1};
+    return best();
   }
+  /// The best candidate as it is, without the pattern search: where the candidates include
+  /// every feature's own minimum (a polytope's faces, edge arcs and vertices; docs/math.md).
+  PairHit<S> best() const { return {-f_, Vector3<S>(a_ - f_ * v_), a_, v_, -1}; }
   bool found() const { return has_best_; }
 
  private:
@@ -187,7 +177,6 @@ class DepthCandidates {
   }
 
   static constexpr S kNone = std::numeric_limits<S>::infinity();
-  static constexpr int kDescentSteps = 60;
   // The families' sample spacing: 30° around a whole circle (12 samples); 0.15 rad on an edge's
   // arc (a box's 90° arc: 11 samples), where the tests found two local minima 0.4 rad apart
   // that 0.4 rad samples miss (EdgeCirclesWithSeveralLocalMinima; 0.3 rad finds them).

@@ -38,6 +38,12 @@ class SupportMap {
       : kind_(Kind::kEllipsoid), radii_(shape.radii), X_(X) {}
   SupportMap(const fcl::Sphere<S>& shape, const fcl::Transform3<S>& X)
       : kind_(Kind::kEllipsoid), radii_(Vector3<S>::Constant(shape.radius)), X_(X) {}
+  /// A single point p (an ellipsoid of radii 0 there): h(v) = v·p.
+  static SupportMap ofPoint(const Vector3<S>& p) {
+    fcl::Transform3<S> X = fcl::Transform3<S>::Identity();
+    X.translation() = p;
+    return SupportMap(Kind::kEllipsoid, X);
+  }
 
   /// The support at the world direction v ≠ 0.
   SupportEval<S> evaluate(const Vector3<S>& v) const {
@@ -83,6 +89,7 @@ class SupportMap {
 
  private:
   enum class Kind { kSuperellipsoid, kEllipsoid };
+  SupportMap(Kind kind, const fcl::Transform3<S>& X) : kind_(kind), X_(X) {}
   Kind kind_;
   NestedNorm<S> norm_{};
   Vector3<S> radii_ = Vector3<S>::Zero();
