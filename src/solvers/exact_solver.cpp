@@ -457,6 +457,7 @@ class ExactSolver {
   /// docs/math.md → "The Exact solver") and where W is not positive definite.
   NestedNormEval<S> dualAtCandidate(const Candidate<S>& c) const {
     const Vector3<S>& n = c.normal;
+    if (!inside_) return dual_.evaluate(n, true);
     const S g = c.gradient.norm();
     const Vector3<S> helper =
         std::abs(n[0]) < S(rules::kTangentHelperSwitch) ? Vector3<S>::UnitX() : Vector3<S>::UnitY();
@@ -465,8 +466,7 @@ class ExactSolver {
     const S w11 = t1.dot(c.hessian * t1) / g, w22 = t2.dot(c.hessian * t2) / g;
     const S w12 = t1.dot(c.hessian * t2) / g;
     const S det = w11 * w22 - w12 * w12;
-    if (!inside_ ||
-        !(w11 > S(0) && det > S(0) && std::isfinite(det) && std::isfinite(w11 + w22 + w12))) {
+    if (!(w11 > S(0) && det > S(0) && std::isfinite(det) && std::isfinite(w11 + w22 + w12))) {
       return dual_.evaluate(n, true);
     }
     // W⁻¹ = [w22, −w12; −w12, w11]/det, as T·W⁻¹·Tᵀ.

@@ -91,6 +91,7 @@ class DepthCandidates {
     auto at = [&](S theta) {
       const Vector3<S> v = direction(theta);
       const Vector3<S> a = shapeSupport(pair_, v);
+      // Unit up to rounding; a degenerate edge's basis (not finite, or zero) is not offered.
       if (std::abs(v.norm() - S(1)) <= S(1e-3)) offerWithSupport(v, a);
       return Sample<S, S>{theta, derivative(theta, v, a), theta};
     };
@@ -178,8 +179,8 @@ class DepthCandidates {
 
   static constexpr S kNone = std::numeric_limits<S>::infinity();
   // The families' sample spacing: 30° around a whole circle (12 samples); 0.15 rad on an edge's
-  // arc (a box's 90° arc: 11 samples), where the tests found two local minima 0.4 rad apart
-  // that 0.4 rad samples miss (EdgeCirclesWithSeveralLocalMinima; 0.3 rad finds them).
+  // arc (a box's 90° arc: 11 intervals), where samples 0.4 rad apart missed one of the two
+  // minima EdgeCirclesWithSeveralLocalMinima replays and 0.3 rad found both.
   static constexpr double kCircleSpacing = 2 * M_PI / 12;
   static constexpr double kArcSpacing = 0.15;
   const Pair<S>& pair_;
