@@ -19,17 +19,22 @@ namespace fcl_superellipsoid {
 namespace detail {
 namespace {
 
-/// An edge of a polytope, vertices i < j, and its normal cone: the outward directions
-/// cos θ·c1 + sin θ·c2, θ ∈ [0, angle], between its two faces' normals (c1 the first's; c2 the
-/// unit direction ⊥ c1 towards the second's, or, on a flat polytope, whose faces' two sides are
-/// opposite, along the face away from the edge's polygon). `arc` false: no such pair of faces
-/// (an edge of one face, or of more than two); the whole circle ⊥ the edge is searched then.
-template <typename S>
+/// An edge of a polytope, vertices i < j, and the faces it borders (the first two; front and
+/// back of a flat polytope's face count as two).
 struct Edge {
   int i, j;
-  Vector3<S> c1 = Vector3<S>::Zero(), c2 = Vector3<S>::Zero();
-  S angle = S(0);
-  bool arc = false;
+  int faces[2] = {-1, -1};
+  int face_count = 0;
+};
+
+/// An edge's normal cone ⊥ the edge: the outward directions cos θ·c1 + sin θ·c2, θ ∈ [0, angle],
+/// between its two faces' normals (c1 the first's; c2 the unit direction ⊥ c1 towards the
+/// second's, or, on a flat polytope, whose faces' two sides are opposite, along the face away
+/// from the edge's polygon).
+template <typename S>
+struct EdgeArc {
+  Vector3<S> c1, c2;
+  S angle;
 };
 
 /// A polytope in world coordinates: vertices, faces as vertex loops with outward normals, and
@@ -39,7 +44,7 @@ struct Polytope {
   std::vector<Vector3<S>> vertices;
   std::vector<std::vector<int>> faces;
   std::vector<Vector3<S>> normals;  // outward, unit
-  std::vector<Edge<S>> edges;
+  std::vector<Edge> edges;
   S extent = S(0);  // largest distance between the centroid and a vertex
 
   /// The support function h(u) = max over the vertices of u·w.
@@ -109,35 +114,36 @@ void finish(Polytope<S>& p) {
   p.normals.insert(p.normals.end(), back_normals.begin(), back_normals.end());
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  // Each edge's faces (front and back of a flat polytope's face count as two).
-  std::vector<std::vector<int>> faces_of(edges.size());
+  for (const auto& [i, j] : edges) p.edges.push_back(Edge{i, j});
   for (std::size_t f = 0; f < p.faces.size(); ++f) {
     const std::vector<int>& loop = p.faces[f];
     for (std::size_t k = 0; k < loop.size(); ++k) {
       const std::pair<int, int> e{std::min(loop[k], loop[(k + 1) % loop.size()]),
                                   std::max(loop[k], loop[(k + 1) % loop.size()])};
-      faces_of[std::lower_bound(edges.begin(), edges.end(), e) - edges.begin()].push_back(int(f));
+      Edge& edge = p.edges[std::lower_bound(edges.begin(), edges.end(), e) - edges.begin()];
+      if (edge.face_count < 2) edge.faces[edge.face_count] = int(f);
+      ++edge.face_count;
     }
   }
-  for (std::size_t k = 0; k < edges.size(); ++k) {
-    Edge<S> edge{edges[k].first, edges[k].second};
-    if (faces_of[k].size() == 2) {
-      const Vector3<S>& n1 = p.normals[faces_of[k][0]];
-      const Vector3<S>& n2 = p.normals[faces_of[k][1]];
-      const Vector3<S> along = p.vertices[edge.j] - p.vertices[edge.i];
-      Vector3<S> c2 = n2 - n1.dot(n2) * n1;
-      if (!(c2.norm() > S(1e-6))) {  // opposite sides of a flat face: through the face's plane
-        c2 = along.cross(n1);
-        if (c2.dot(p.vertices[edge.i] - centroid) < S(0)) c2 = -c2;
-      }
-      c2.stableNormalize();
-      edge.c1 = n1;
-      edge.c2 = c2;
-      edge.angle = std::atan2(std::max(S(0), c2.dot(n2)), n1.dot(n2));
-      edge.arc = c2.allFinite() && std::isfinite(edge.angle);
-    }
-    p.edges.push_back(edge);
+}
+
+/// The normal cone of an edge of exactly two faces (the overlap's edge search; not needed when
+/// the shapes are apart, so not computed with the polytope); nothing if it is not finite.
+template <typename S>
+std::optional<EdgeArc<S>> arcOf(const Polytope<S>& p, const Edge& edge,
+                                const Vector3<S>& centroid) {
+  if (edge.face_count != 2) return std::nullopt;
+  const Vector3<S>& n1 = p.normals[edge.faces[0]];
+  const Vector3<S>& n2 = p.normals[edge.faces[1]];
+  Vector3<S> c2 = n2 - n1.dot(n2) * n1;
+  if (!(c2.norm() > S(1e-6))) {  // opposite sides of a flat face: through the face's plane
+    c2 = (p.vertices[edge.j] - p.vertices[edge.i]).cross(n1);
+    if (c2.dot(p.vertices[edge.i] - centroid) < S(0)) c2 = -c2;
   }
+  c2.stableNormalize();
+  const S angle = std::atan2(std::max(S(0), c2.dot(n2)), n1.dot(n2));
+  if (!c2.allFinite() || !std::isfinite(angle)) return std::nullopt;
+  return EdgeArc<S>{n1, c2, angle};
 }
 
 template <typename S>
@@ -208,7 +214,7 @@ std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Polytope<S>&
       return candidates.certified();
   }
   // Edges with both ends near.
-  for (const Edge<S>& edge : p.edges) {
+  for (const Edge& edge : p.edges) {
     if (!near[edge.i] || !near[edge.j]) continue;
     const SegmentMinimum<S> m =
         nearestOnSegment(*pair.shape, *pair.X_WS, p.vertices[edge.i], p.vertices[edge.j]);
@@ -245,9 +251,9 @@ PairHit<S> overlap(const Pair<S>& pair, const Polytope<S>& p, const PairHit<S>& 
   for (std::size_t i = 0; i < p.vertices.size(); ++i) {
     if (distance[i] < S(0)) depth.offerDescent(p.vertices[i], Vector3<S>(centroid - p.vertices[i]));
   }
-  for (const Edge<S>& e : p.edges) {
-    if (e.arc) {
-      depth.offerEdgeArc(p.vertices[e.i], e.c1, e.c2, e.angle);
+  for (const Edge& e : p.edges) {
+    if (const std::optional<EdgeArc<S>> arc = arcOf(p, e, centroid)) {
+      depth.offerEdgeArc(p.vertices[e.i], arc->c1, arc->c2, arc->angle);
     } else {
       depth.offerEdge(p.vertices[e.i], p.vertices[e.j]);
     }
