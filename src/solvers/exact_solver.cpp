@@ -394,11 +394,17 @@ class ExactSolver {
   /// step is the one that converges (the replaced one creeps, by about eigenvalue/(10 % of
   /// scale) per iteration), so a positive one comes back in `full_step_first`: the caller tries
   /// the plain step first.
-  static TangentSteps tangentSteps(const NewtonSystem& system, const Vector3<S>& n) {
+  /// An orthonormal basis (t1, t2) of the plane ⊥ the unit n (the helper axis switches at
+  /// exact_rules::kTangentHelperSwitch so that n × helper never degenerates).
+  static std::pair<Vector3<S>, Vector3<S>> tangentBasis(const Vector3<S>& n) {
     const Vector3<S> helper =
         std::abs(n[0]) < S(rules::kTangentHelperSwitch) ? Vector3<S>::UnitX() : Vector3<S>::UnitY();
     const Vector3<S> t1 = n.cross(helper).normalized();
-    const Vector3<S> t2 = n.cross(t1);
+    return {t1, n.cross(t1)};
+  }
+
+  static TangentSteps tangentSteps(const NewtonSystem& system, const Vector3<S>& n) {
+    const auto [t1, t2] = tangentBasis(n);
     const Eigen::Matrix<S, 3, 3>& a = system.matrix;
     const S b11 = t1.dot(a * t1), b22 = t2.dot(a * t2), b12 = t1.dot(a * t2);
     const S c1 = t1.dot(system.residual), c2 = t2.dot(system.residual);
@@ -459,10 +465,7 @@ class ExactSolver {
     const Vector3<S>& n = c.normal;
     if (!inside_) return dual_.evaluate(n, true);
     const S g = c.gradient.norm();
-    const Vector3<S> helper =
-        std::abs(n[0]) < S(rules::kTangentHelperSwitch) ? Vector3<S>::UnitX() : Vector3<S>::UnitY();
-    const Vector3<S> t1 = n.cross(helper).normalized();
-    const Vector3<S> t2 = n.cross(t1);
+    const auto [t1, t2] = tangentBasis(n);
     const S w11 = t1.dot(c.hessian * t1) / g, w22 = t2.dot(c.hessian * t2) / g;
     const S w12 = t1.dot(c.hessian * t2) / g;
     const S det = w11 * w22 - w12 * w12;
