@@ -404,7 +404,8 @@ class ExactSolver {
   }
 
   static TangentSteps tangentSteps(const NewtonSystem& system, const Vector3<S>& n) {
-    const auto [t1, t2] = tangentBasis(n);
+    const std::pair<Vector3<S>, Vector3<S>> basis = tangentBasis(n);
+    const Vector3<S>&t1 = basis.first, &t2 = basis.second;
     const Eigen::Matrix<S, 3, 3>& a = system.matrix;
     const S b11 = t1.dot(a * t1), b22 = t2.dot(a * t2), b12 = t1.dot(a * t2);
     const S c1 = t1.dot(system.residual), c2 = t2.dot(system.residual);
@@ -465,7 +466,8 @@ class ExactSolver {
     const Vector3<S>& n = c.normal;
     if (!inside_) return dual_.evaluate(n, true);
     const S g = c.gradient.norm();
-    const auto [t1, t2] = tangentBasis(n);
+    const std::pair<Vector3<S>, Vector3<S>> basis = tangentBasis(n);
+    const Vector3<S>&t1 = basis.first, &t2 = basis.second;
     const S w11 = t1.dot(c.hessian * t1) / g, w22 = t2.dot(c.hessian * t2) / g;
     const S w12 = t1.dot(c.hessian * t2) / g;
     const S det = w11 * w22 - w12 * w12;
