@@ -32,6 +32,13 @@ namespace detail {
 template <typename S, typename OtherSupport>
 class DepthCandidates {
  public:
+  /// A point of the other shape seen from the superellipsoid (offerPoints).
+  struct Escape {
+    S distance;            // signed, to the superellipsoid (negative: inside)
+    Vector3<S> direction;  // the escape direction: the outward normal at the nearest point
+    S f;                   // F there (infinite if it is not finite)
+  };
+
   DepthCandidates(const Pair<S>& pair, OtherSupport other_support)
       : pair_(pair), other_support_(other_support) {}
 
@@ -44,9 +51,9 @@ class DepthCandidates {
 
   /// Points of the other shape (vertices, the apex, rim points, a capsule's ends): each one's
   /// escape direction, the outward normal at its nearest point on the superellipsoid, through
-  /// the batched queries (SIMD lanes, the calling thread only). Returns their signed distances
-  /// to the superellipsoid (negative: inside), in order.
-  std::vector<S> offerPoints(const std::vector<Vector3<S>>& points) {
+  /// the batched queries (SIMD lanes, the calling thread only). Returns, in order, each point's
+  /// signed distance to the superellipsoid (negative: inside), its escape direction and F there.
+  std::vector<Escape> offerPoints(const std::vector<Vector3<S>>& points) {
     Matrix3X<S> p_W(3, Eigen::Index(points.size()));
     for (std::size_t i = 0; i < points.size(); ++i) p_W.col(Eigen::Index(i)) = points[i];
     BatchOptions<S> options;
@@ -54,24 +61,29 @@ class DepthCandidates {
     options.threads = 1;
     BatchDistanceResult<S> r;
     batchDistance(*pair_.shape, *pair_.X_WS, p_W, r, options);
-    std::vector<S> distance(points.size());
+    std::vector<Escape> escapes(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
-      offerDirection(r.normal.col(Eigen::Index(i)));
-      distance[i] = r.distance[Eigen::Index(i)];
+      const Vector3<S> v = r.normal.col(Eigen::Index(i));
+      escapes[i] = {r.distance[Eigen::Index(i)], v, offerDirection(v)};
     }
-    return distance;
+    return escapes;
   }
 
-  /// A point w of the other shape, from a start direction: Newton's method on the sphere for
-  /// f(v) = h_A(v) − v·w (sphere_newton.h, w as a point: h_B(−v) = −v·w), then its end offered.
-  /// offerPoints gives f's minimum over the whole sphere; where w supports the other shape only
-  /// in a region elsewhere, f may have a second local minimum inside that region, which is F's
-  /// there.
-  void offerDescent(const Vector3<S>& w, const Vector3<S>& start) {
+  /// A smooth piece P of the other shape (a vertex or the apex as a point, a rim as a circle:
+  /// support_map.h), from a start direction: Newton's method on the sphere for
+  /// f_P(v) = h_A(v) + h_P(−v) (sphere_newton.h), then its end offered. Where P supports the
+  /// other shape along −v, F is f_P. offerPoints gives a point's f_P minimum over the whole
+  /// sphere; where P supports the other shape only in a region elsewhere, f_P may have a second
+  /// local minimum inside that region, which is F's there.
+  template <typename Stop = bool (*)(const Vector3<S>&)>
+  void offerDescent(
+      const SupportMap<S>& piece, const Vector3<S>& start,
+      int max_iterations = kSphereNewtonIterations,
+      Stop stop = [](const Vector3<S>&) { return false; }) {
     if (!start.allFinite() || !(start.norm() > S(0))) return;
-    const Probe<S> p =
-        localMinimum(SupportMap<S>(*pair_.shape, *pair_.X_WS), SupportMap<S>::ofPoint(w), start);
-    offerDirection(p.v);
+    offerDirection(
+        localMinimum(SupportMap<S>(*pair_.shape, *pair_.X_WS), piece, start, max_iterations, stop)
+            .v);
   }
 
   /// A one-parameter family of directions v(θ) (unit), θ over [from, to], with derivative(θ, v, a)

@@ -247,9 +247,12 @@ PairHit<S> overlap(const Pair<S>& pair, const Polytope<S>& p, const PairHit<S>& 
   // h_A(v) − v·w, which can have a second local minimum there: the case the tests found).
   // Vertices outside are left to the other candidates, to keep the cost down (a choice, not a
   // proof: docs/math.md).
-  const std::vector<S> distance = depth.offerPoints(p.vertices);
+  const auto escapes = depth.offerPoints(p.vertices);
   for (std::size_t i = 0; i < p.vertices.size(); ++i) {
-    if (distance[i] < S(0)) depth.offerDescent(p.vertices[i], Vector3<S>(centroid - p.vertices[i]));
+    if (escapes[i].distance < S(0)) {
+      depth.offerDescent(SupportMap<S>::ofPoint(p.vertices[i]),
+                         Vector3<S>(centroid - p.vertices[i]));
+    }
   }
   for (const Edge& e : p.edges) {
     if (const std::optional<EdgeArc<S>> arc = arcOf(p, e, centroid)) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "fcl_glue/pairs/candidates.h"
@@ -171,7 +172,24 @@ std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Round<S>& b,
 }
 
 /// The overlap's depth: the least F over the flat ends' normals, the side's family of normals,
-/// points of the rims, the apex and MPR's normal (depth_candidates.h).
+/// the rims' and the apex's regions and MPR's normal (depth_candidates.h). B is the hull of its
+/// rims (the cone's: the base rim and the apex), and F is smooth inside each one's region (the
+/// directions along which it supports B), equal to that piece's f_P there; so the minimiser is
+/// a disc's normal, a local minimum along the side's family (the regions' border), or a local
+/// minimum of a rim's or the apex's f_P inside its region. A rim's f_P can have several local
+/// minima (the tests found two, 0.2 rad apart, equal to 5e-6 × size); Newton's method on f_P
+/// (sphere_newton.h) starts from the escape directions of the rim's deepest sampled point and
+/// its two neighbours, of the sample with the least F, and from the best candidate where the
+/// rim supports B there; the apex gets a polytope vertex's descents (docs/math.md → "Flat
+/// faces, edges and rims overlapping").
+/// Newton on a rim's f_P takes at most kRimSteps steps and stops within kNearAxis (rad) of the
+/// rim's axis: there f_P has a kink (the disc's normal, a candidate of its own), which Newton
+/// approaches by ever smaller steps and does not reach (uncapped, the overlaps took ten times
+/// as long). Away from the axis it converges in under 10 steps; one overlap of the larger
+/// sample needed more than 30 to reach 1e-10 × size.
+constexpr int kRimSteps = 100;
+constexpr double kNearAxis = 1e-3;
+
 template <typename S>
 PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& start) {
   auto support = [&b](const Vector3<S>& u) { return b.support(u); };
@@ -185,16 +203,52 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
   };
   depth.offerFamily(direction, derivative, S(0), S(2 * M_PI), true);
   constexpr int kRimPoints = 12;
-  std::vector<Vector3<S>> points;
+  std::vector<S> sides;  // the rims: the cylinder's two, the cone's base
   for (S side : {S(1), S(-1)}) {
-    if (b.cone && side > S(0)) continue;
+    if (!(b.cone && side > S(0))) sides.push_back(side);
+  }
+  std::vector<Vector3<S>> points;
+  for (S side : sides) {
     for (int k = 0; k < kRimPoints; ++k) {
       points.push_back(b.t + side * b.h * b.z + b.r * b.circle(S(2 * M_PI * k / kRimPoints)));
     }
   }
-  if (b.cone) points.push_back(b.t + b.h * b.z);
-  depth.offerPoints(points);
-  return depth.refinedBest();
+  const Vector3<S> apex = b.t + b.h * b.z;
+  if (b.cone) points.push_back(apex);
+  const auto escapes = depth.offerPoints(points);
+  // In float the pattern search stays, as for the polytopes (docs/math.md).
+  if constexpr (std::is_same_v<S, float>) return depth.refinedBest();
+  const Vector3<S> best = depth.best().normal, u = -best;  // B's supporting direction there
+  const S uz = u.dot(b.z), radial = b.r * (u - uz * b.z).norm();
+  const bool apex_supports = b.cone && b.h * uz >= radial - b.h * uz;
+  auto near_axis = [&](const Vector3<S>& v) {
+    return (v - v.dot(b.z) * b.z).norm() < S(kNearAxis);
+  };
+  for (std::size_t k = 0; k < sides.size(); ++k) {
+    const SupportMap<S> rim = SupportMap<S>::ofCircle(b.t + sides[k] * b.h * b.z, b.z, b.r);
+    const auto first = escapes.begin() + std::ptrdiff_t(k * kRimPoints), last = first + kRimPoints;
+    const int deepest =
+        int(std::min_element(first, last,
+                             [](const auto& x, const auto& y) { return x.distance < y.distance; }) -
+            first);
+    const int lowest =
+        int(std::min_element(first, last, [](const auto& x, const auto& y) { return x.f < y.f; }) -
+            first);
+    for (int i : {deepest, (deepest + 1) % kRimPoints, (deepest + kRimPoints - 1) % kRimPoints}) {
+      depth.offerDescent(rim, first[i].direction, kRimSteps, near_axis);
+    }
+    if (std::abs(lowest - deepest) > 1 && std::abs(lowest - deepest) != kRimPoints - 1) {
+      depth.offerDescent(rim, first[lowest].direction, kRimSteps, near_axis);
+    }
+    const bool rim_supports = b.cone ? !apex_supports : sides[k] * uz >= S(0);
+    if (rim_supports) depth.offerDescent(rim, best, kRimSteps, near_axis);
+  }
+  if (b.cone) {
+    const SupportMap<S> point = SupportMap<S>::ofPoint(apex);
+    if (escapes.back().distance < S(0)) depth.offerDescent(point, Vector3<S>(-b.z));
+    if (apex_supports) depth.offerDescent(point, best);
+  }
+  return depth.best();
 }
 
 }  // namespace

@@ -43,12 +43,16 @@ std::array<Vector3<S>, 2> tangents(const Vector3<S>& v) {
 }
 
 /// Newton's method for F on the unit sphere from v0, with a backtracking line search and the
-/// Riemannian Hessian shifted to positive definite where F is not locally convex.
-template <typename S>
-Probe<S> localMinimum(const SupportMap<S>& A, const SupportMap<S>& B, const Vector3<S>& v0) {
+/// Riemannian Hessian shifted to positive definite where F is not locally convex; at most
+/// `max_iterations` steps, and none after an iterate v with stop(v).
+template <typename S, typename Stop = bool (*)(const Vector3<S>&)>
+Probe<S> localMinimum(
+    const SupportMap<S>& A, const SupportMap<S>& B, const Vector3<S>& v0,
+    int max_iterations = kSphereNewtonIterations,
+    Stop stop = [](const Vector3<S>&) { return false; }) {
   Probe<S> p = probe(A, B, Vector3<S>(v0.normalized()));
   const S eps = std::numeric_limits<S>::epsilon();
-  for (int it = 0; it < kSphereNewtonIterations; ++it) {
+  for (int it = 0; it < max_iterations; ++it) {
     const auto [t1, t2] = tangents(p.v);
     // Riemannian gradient and Hessian: P·∇F and P·∇²F·P − (v·∇F)·P, with v·∇F = F (F is
     // 1-homogeneous).
@@ -86,7 +90,7 @@ Probe<S> localMinimum(const SupportMap<S>& A, const SupportMap<S>& B, const Vect
         break;
       }
     }
-    if (!moved || length < S(64) * eps) break;
+    if (!moved || length < S(64) * eps || stop(p.v)) break;
   }
   return p;
 }

@@ -44,6 +44,19 @@ class SupportMap {
     X.translation() = p;
     return SupportMap(Kind::kEllipsoid, X);
   }
+  /// A circle of radius r around `centre`, in the plane ⊥ `axis` (unit; an ellipsoid of radii
+  /// (r, r, 0)): h(v) = v·centre + r·‖v − (v·axis)·axis‖, a rim of a cylinder or a cone.
+  static SupportMap ofCircle(const Vector3<S>& centre, const Vector3<S>& axis, S r) {
+    fcl::Transform3<S> X = fcl::Transform3<S>::Identity();
+    const Vector3<S> e1 = axis.unitOrthogonal();
+    X.linear().col(0) = e1;
+    X.linear().col(1) = axis.cross(e1);
+    X.linear().col(2) = axis;
+    X.translation() = centre;
+    SupportMap map(Kind::kEllipsoid, X);
+    map.radii_ = Vector3<S>(r, r, S(0));
+    return map;
+  }
 
   /// The support at the world direction v ≠ 0.
   SupportEval<S> evaluate(const Vector3<S>& v) const {
