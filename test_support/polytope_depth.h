@@ -24,6 +24,7 @@
 #include <limits>
 #include <vector>
 
+#include "enumerated_depth.h"
 #include "pair_construction.h"
 
 namespace fcl_superellipsoid {
@@ -71,34 +72,16 @@ inline LD polytopeDepth(const std::function<LD(const V3&)>& h_a, const std::vect
     }
   }
 
-  // Borders: F along the great circle perpendicular to each vertex pair's difference, sampled,
-  // each sampled local minimum refined by a golden-section search on its bracket.
-  const int samples = 360;
+  // Borders: F along the great circle perpendicular to each vertex pair's difference
+  // (enumerated_depth.h).
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = i + 1; j < n; ++j) {
       const V3 e = (b[j] - b[i]).normalized();
       const V3 p = e.unitOrthogonal(), q = e.cross(p);
-      auto on_circle = [&](LD angle) { return F(V3(std::cos(angle) * p + std::sin(angle) * q)); };
-      const LD step = LD(2 * M_PI) / samples;
-      std::vector<LD> g(samples);
-      for (int s = 0; s < samples; ++s) g[s] = on_circle(s * step);
-      for (int s = 0; s < samples; ++s) {
-        if (g[s] > g[(s + samples - 1) % samples] || g[s] > g[(s + 1) % samples]) continue;
-        LD lo = (s - 1) * step, hi = (s + 1) * step;
-        const LD ratio = (std::sqrt(LD(5)) - 1) / 2;
-        LD x1 = hi - ratio * (hi - lo), x2 = lo + ratio * (hi - lo);
-        LD f1 = on_circle(x1), f2 = on_circle(x2);
-        for (int it = 0; it < 120 && hi - lo > LD(1e-17); ++it) {
-          if (f1 <= f2) {
-            hi = x2, x2 = x1, f2 = f1;
-            x1 = hi - ratio * (hi - lo), f1 = on_circle(x1);
-          } else {
-            lo = x1, x1 = x2, f1 = f2;
-            x2 = lo + ratio * (hi - lo), f2 = on_circle(x2);
-          }
-        }
-        best = std::min({best, f1, f2, g[s]});
-      }
+      best = std::min(
+          best,
+          borderMinimum([&](LD angle) { return F(V3(std::cos(angle) * p + std::sin(angle) * q)); },
+                        360));
     }
   }
 
@@ -106,34 +89,10 @@ inline LD polytopeDepth(const std::function<LD(const V3&)>& h_a, const std::vect
   // converges), scored by F. Its starts: the best lattice directions inside R_b (v* is near
   // them when it is inside R_b, where f_b may also have a lower minimum outside R_b, e.g. for a
   // vertex near A's medial axis), and the best overall.
-  const int lattice = 1000, starts = 3;
-  std::vector<V3> directions;
-  for (int i = 0; i < lattice; ++i) {
-    const LD z = 1 - (2 * LD(i) + 1) / lattice, r = std::sqrt(std::max(LD(0), 1 - z * z));
-    const LD phi = LD(2.39996322972865332) * i;
-    directions.push_back(V3(r * std::cos(phi), r * std::sin(phi), z));
-  }
+  const std::vector<V3> directions = fibonacciLattice(1000);
   for (const V3& vertex : b) {
-    auto f = [&](const V3& v) { return h_a(v) - v.dot(vertex); };
-    std::vector<std::pair<LD, V3>> inside, all;
-    for (const V3& v : directions) {
-      const LD fv = f(v);
-      all.push_back({fv, v});
-      if (fv >= F(v) - LD(1e-12) * (1 + std::abs(fv))) inside.push_back({fv, v});
-    }
-    auto by_value = [](const auto& x, const auto& y) { return x.first < y.first; };
-    std::vector<std::pair<LD, V3>> chosen;
-    for (auto* points : {&inside, &all}) {
-      const std::size_t k = std::min<std::size_t>(starts, points->size());
-      std::partial_sort(points->begin(), points->begin() + k, points->end(), by_value);
-      chosen.insert(chosen.end(), points->begin(), points->begin() + k);
-    }
-    for (const auto& [f0, v0] : chosen) {
-      V3 v = v0;
-      LD fv = f0;
-      patternSearch(f, v, fv, 8, LD(1e-15));
-      best = std::min(best, F(v));
-    }
+    best = std::min(
+        best, pieceMinimum([&](const V3& v) { return h_a(v) - v.dot(vertex); }, F, directions, 3));
   }
   return best;
 }

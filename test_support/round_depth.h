@@ -26,9 +26,9 @@
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <utility>
 #include <vector>
 
+#include "enumerated_depth.h"
 #include "pair_construction.h"
 
 namespace fcl_superellipsoid {
@@ -67,65 +67,21 @@ inline LD roundDepth(const std::function<LD(const V3&)>& h_a, const fcl::Collisi
   // The rims' axes: the discs' normals.
   LD best = std::min(F(z), cone ? std::numeric_limits<LD>::infinity() : F(V3(-z)));
 
-  // The border: v(θ) = −m(θ), m the side's outward normal, sampled and refined.
+  // The border: v(θ) = −m(θ), m the side's outward normal (enumerated_depth.h).
   const LD slant = std::hypot(2 * h, r);
-  auto border = [&](LD theta) {
-    const V3 c = std::cos(theta) * e1 + std::sin(theta) * e2;
-    const V3 m = cone ? V3((2 * h * c + r * z) / slant) : c;
-    return F(V3(-m));
-  };
-  const int samples = 720;
-  const LD step = LD(2 * M_PI) / samples;
-  std::vector<LD> g_s(samples);
-  for (int s = 0; s < samples; ++s) g_s[s] = border(s * step);
-  for (int s = 0; s < samples; ++s) {
-    if (g_s[s] > g_s[(s + samples - 1) % samples] || g_s[s] > g_s[(s + 1) % samples]) continue;
-    LD lo = (s - 1) * step, hi = (s + 1) * step;
-    const LD ratio = (std::sqrt(LD(5)) - 1) / 2;
-    LD x1 = hi - ratio * (hi - lo), x2 = lo + ratio * (hi - lo);
-    LD f1 = border(x1), f2 = border(x2);
-    for (int it = 0; it < 120 && hi - lo > LD(1e-17); ++it) {
-      if (f1 <= f2) {
-        hi = x2, x2 = x1, f2 = f1;
-        x1 = hi - ratio * (hi - lo), f1 = border(x1);
-      } else {
-        lo = x1, x1 = x2, f1 = f2;
-        x2 = lo + ratio * (hi - lo), f2 = border(x2);
-      }
-    }
-    best = std::min({best, f1, f2, g_s[s]});
-  }
+  best = std::min(best, borderMinimum(
+                            [&](LD theta) {
+                              const V3 c = std::cos(theta) * e1 + std::sin(theta) * e2;
+                              return F(V3(cone ? V3(-(2 * h * c + r * z) / slant) : V3(-c)));
+                            },
+                            720));
 
   // The regions: local minima of each f_P by a pattern search from the best lattice directions
-  // inside P's region and overall, scored by F.
-  const int lattice = 2000, starts = 4;
-  std::vector<V3> directions;
-  for (int i = 0; i < lattice; ++i) {
-    const LD zz = 1 - (2 * LD(i) + 1) / lattice, rr = std::sqrt(std::max(LD(0), 1 - zz * zz));
-    const LD phi = LD(2.39996322972865332) * i;
-    directions.push_back(V3(rr * std::cos(phi), rr * std::sin(phi), zz));
-  }
+  // inside P's region and overall, scored by F (enumerated_depth.h).
+  const std::vector<V3> directions = fibonacciLattice(2000);
   for (const auto& h_p : pieces) {
-    auto f = [&](const V3& v) { return h_a(v) + h_p(V3(-v)); };
-    std::vector<std::pair<LD, V3>> inside, all;
-    for (const V3& v : directions) {
-      const LD fv = f(v);
-      all.push_back({fv, v});
-      if (fv >= F(v) - LD(1e-12) * (1 + std::abs(fv))) inside.push_back({fv, v});
-    }
-    auto by_value = [](const auto& x, const auto& y) { return x.first < y.first; };
-    std::vector<std::pair<LD, V3>> chosen;
-    for (auto* points : {&inside, &all}) {
-      const std::size_t k = std::min<std::size_t>(starts, points->size());
-      std::partial_sort(points->begin(), points->begin() + k, points->end(), by_value);
-      chosen.insert(chosen.end(), points->begin(), points->begin() + k);
-    }
-    for (const auto& [f0, v0] : chosen) {
-      V3 v = v0;
-      LD fv = f0;
-      patternSearch(f, v, fv, 8, LD(1e-15));
-      best = std::min(best, F(v));
-    }
+    best = std::min(
+        best, pieceMinimum([&](const V3& v) { return h_a(v) + h_p(V3(-v)); }, F, directions, 4));
   }
   return best;
 }

@@ -282,20 +282,22 @@ TEST(ShapePairs, ShapesWithFlatFacesAndEdgesMatchTheConstruction) {
     std::cout << name << ": most depth beyond the search's " << e << " × size\n";
 }
 
-// Overlapping polytopes (box, convex, triangle) against the depth by enumeration of the
-// polytope's faces, edges and vertices (test_support/polytope_depth.h), which does not stall on
-// F's kinks as the pattern search does. What holds for every pair: ours is a real separating
-// translation, so never shallower than the enumeration, and the enumeration is never above the
-// pattern search (a check of the reference); and ours is the enumerated depth to 1e-9 × size
-// (the worst per partner is printed).
-TEST(ShapePairs, PolytopeOverlapsAgainstTheEnumeratedDepth) {
-  // A larger sample: FSE_POLYTOPE_TRIALS=60 FSE_POLYTOPE_SEED=43 (each seed's 60 trials take
-  // about a minute).
-  const char* trials_env = std::getenv("FSE_POLYTOPE_TRIALS");
-  const char* seed_env = std::getenv("FSE_POLYTOPE_SEED");
+/// Ours against an exact depth by enumeration (`enumerated(h_a, partner, X_WB)`), on overlapping
+/// partners of `names` (flatPartners), overlapping by `gap` × 0.1 × size: what holds for every
+/// pair: ours is a real separating translation, so never shallower than the enumeration, and the
+/// enumeration is never above the pattern search (a check of the reference); and ours is the
+/// enumerated depth to 1e-9 × size (the worst per partner is printed). The environment variables
+/// PREFIX_TRIALS (default 20) and PREFIX_SEED (default 41) give a larger sample.
+void expectTheEnumeratedDepth(
+    const std::vector<std::string>& names, const std::string& prefix,
+    std::uniform_real_distribution<double> gap,
+    const std::function<LD(const std::function<LD(const V3&)>&, const fcl::CollisionGeometryd&,
+                           const fcl::Transform3d&)>& enumerated_depth) {
+  const char* trials_env = std::getenv((prefix + "_TRIALS").c_str());
+  const char* seed_env = std::getenv((prefix + "_SEED").c_str());
   const int trials = trials_env != nullptr ? std::atoi(trials_env) : 20;
   std::mt19937 rng(seed_env != nullptr ? std::atoi(seed_env) : 41);
-  std::uniform_real_distribution<double> gap(-0.3, -0.01), size(0.5, 5.0);
+  std::uniform_real_distribution<double> size(0.5, 5.0);
   std::map<std::string, double> worst;
   int checked = 0;
   for (int trial = 0; trial < trials; ++trial) {
@@ -305,14 +307,12 @@ TEST(ShapePairs, PolytopeOverlapsAgainstTheEnumeratedDepth) {
       const std::string name = partner.name;
       const LD d = LD(gap(rng)) * scale * LD(0.1);
       const fcl::Transform3d X_WB = placePartner(c, d, partner.b_L, partner.m_L, rng);
-      // Box, convex, triangle; not the face variants (exact in the other tests: a face's
-      // normal is a candidate), nor the round shapes (not polytopes).
-      if (name != "box" && name != "convex" && name != "triangle") continue;
+      if (std::find(names.begin(), names.end(), name) == names.end()) continue;
       const double size_max = 2 * double(scale);
       const Answer r =
           ask<double>(makeShape<double>(c.shape), c.X_WA, partner.geometry, X_WB, 1e-4 * size_max);
       const auto h_a = supportFunction(*makeShape<double>(c.shape), c.X_WA);
-      const LD enumerated = polytopeDepth(h_a, polytopeVertices(*partner.geometry, X_WB));
+      const LD enumerated = enumerated_depth(h_a, *partner.geometry, X_WB);
       const LD searched = referenceDepth(h_a, supportFunction(*partner.geometry, X_WB), 2000);
       EXPECT_LE(double(enumerated), double(searched) + 1e-12 * size_max) << name << " " << trial;
       // Our distance is −(our depth): never above −(the enumerated depth).
@@ -324,50 +324,30 @@ TEST(ShapePairs, PolytopeOverlapsAgainstTheEnumeratedDepth) {
       ++checked;
     }
   }
-  EXPECT_EQ(checked, 3 * trials);
+  EXPECT_EQ(checked, int(names.size()) * trials);
   for (const auto& [name, e] : worst)
     std::cout << name << ": worst depth error " << e << " × size\n";
 }
 
+// Overlapping polytopes (box, convex, triangle) against the depth by enumeration of the
+// polytope's faces, edges and vertices (test_support/polytope_depth.h), which does not stall on
+// F's kinks as the pattern search does. Not the face variants (exact in the other tests: a face's
+// normal is a candidate), nor the round shapes. A larger sample: FSE_POLYTOPE_TRIALS=60
+// FSE_POLYTOPE_SEED=43 (each seed's 60 trials take about a minute).
+TEST(ShapePairs, PolytopeOverlapsAgainstTheEnumeratedDepth) {
+  expectTheEnumeratedDepth({"box", "convex", "triangle"}, "FSE_POLYTOPE",
+                           std::uniform_real_distribution<double>(-0.3, -0.01),
+                           [](const auto& h_a, const auto& g, const auto& X) {
+                             return polytopeDepth(h_a, polytopeVertices(g, X));
+                           });
+}
+
 // Overlapping cylinders and cones against the depth by enumeration of their smooth pieces (rims,
-// the apex: test_support/round_depth.h), as the polytopes above: ours is never shallower than the
-// enumeration, the enumeration never above the pattern search, and ours is the enumerated depth
-// to 1e-9 × size. Overlaps from 0.001 to 0.1 × size (the benchmark's deepest bucket).
+// the apex: test_support/round_depth.h), overlapping by 0.001 to 0.1 × size (the benchmark's
+// deepest bucket). A larger sample: FSE_ROUND_TRIALS=60 FSE_ROUND_SEED=43.
 TEST(ShapePairs, RoundOverlapsAgainstTheEnumeratedDepth) {
-  // A larger sample: FSE_ROUND_TRIALS=60 FSE_ROUND_SEED=43.
-  const char* trials_env = std::getenv("FSE_ROUND_TRIALS");
-  const char* seed_env = std::getenv("FSE_ROUND_SEED");
-  const int trials = trials_env != nullptr ? std::atoi(trials_env) : 20;
-  std::mt19937 rng(seed_env != nullptr ? std::atoi(seed_env) : 41);
-  std::uniform_real_distribution<double> gap(-1.0, -0.01), size(0.5, 5.0);
-  std::map<std::string, double> worst;
-  int checked = 0;
-  for (int trial = 0; trial < trials; ++trial) {
-    const LD scale = LD(size(rng));
-    const Construction c = constructShape(rng, scale);
-    for (const FlatPartner& partner : flatPartners(rng, scale)) {
-      const std::string name = partner.name;
-      const LD d = LD(gap(rng)) * scale * LD(0.1);
-      const fcl::Transform3d X_WB = placePartner(c, d, partner.b_L, partner.m_L, rng);
-      if (name != "cylinder" && name != "cone") continue;
-      const double size_max = 2 * double(scale);
-      const Answer r =
-          ask<double>(makeShape<double>(c.shape), c.X_WA, partner.geometry, X_WB, 1e-4 * size_max);
-      const auto h_a = supportFunction(*makeShape<double>(c.shape), c.X_WA);
-      const LD enumerated = roundDepth(h_a, *partner.geometry, X_WB);
-      const LD searched = referenceDepth(h_a, supportFunction(*partner.geometry, X_WB), 2000);
-      EXPECT_LE(double(enumerated), double(searched) + 1e-12 * size_max) << name << " " << trial;
-      EXPECT_LE(r.distance, -double(enumerated) + 1e-12 * size_max) << name << " " << trial;
-      const double e = std::abs(r.distance + double(enumerated)) / size_max;
-      worst[name] = std::max(worst[name], e);
-      EXPECT_LE(e, 1e-9) << name << " trial " << trial << ": " << r.distance << " vs "
-                         << -double(enumerated);
-      ++checked;
-    }
-  }
-  EXPECT_EQ(checked, 2 * trials);
-  for (const auto& [name, e] : worst)
-    std::cout << name << ": worst depth error " << e << " × size\n";
+  expectTheEnumeratedDepth({"cylinder", "cone"}, "FSE_ROUND",
+                           std::uniform_real_distribution<double>(-1.0, -0.01), roundDepth);
 }
 
 // The two overlaps on which the depth once stopped at a local minimum (1 in 90 of the larger
