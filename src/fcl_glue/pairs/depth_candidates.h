@@ -8,13 +8,14 @@
 // v that separates the shapes, so the least one found is never shallower than the true depth; it
 // is the depth when the candidates include the minimiser. They come from the other shape's
 // features, where F is smooth: a face's normal; a vertex's (or a rim point's) escape direction,
-// the outward normal at its nearest point on the superellipsoid (the point solver), and a
-// vertex's Newton descent from inside its own region (offerDescent); an edge's arc or a side's
-// one-parameter family of directions, sampled and refined where the restricted F is stationary
-// (segment_search.h); and MPR's normal. A polytope's candidates include every feature's own
-// minimum, and its best is the answer (best()); a round shape's rim points are samples, and a
-// pattern search on the sphere polishes the best of them (refinedBest()), where F's kinks (the
-// other shape's supporting feature changes) leave the minimiser between the families.
+// the outward normal at its nearest point on the superellipsoid (the point solver), and the
+// Newton descents of a vertex, a rim or an apex inside its own region (offerDescent); an edge's
+// arc or a side's one-parameter family of directions, sampled and refined where the restricted F
+// is stationary (segment_search.h); and MPR's normal. A polytope's, a cylinder's and a cone's
+// candidates include every feature's own minimum, and their best is the answer (best()); a
+// capsule's (and every shape's in float) are polished by a pattern search on the sphere
+// (refinedBest()), where F's kinks (the other shape's supporting feature changes) leave the
+// minimiser between the families.
 
 #include <algorithm>
 #include <cmath>

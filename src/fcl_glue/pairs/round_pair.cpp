@@ -177,11 +177,11 @@ std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Round<S>& b,
 /// directions along which it supports B), equal to that piece's f_P there; so the minimiser is
 /// a disc's normal, a local minimum along the side's family (the regions' border), or a local
 /// minimum of a rim's or the apex's f_P inside its region. A rim's f_P can have several local
-/// minima (the tests found two, 0.2 rad apart, equal to 5e-6 × size); Newton's method on f_P
-/// (sphere_newton.h) starts from the escape directions of the rim's deepest sampled point and
-/// its two neighbours, of the sample with the least F, and from the best candidate where the
-/// rim supports B there; the apex gets a polytope vertex's descents (docs/math.md → "Flat
-/// faces, edges and rims overlapping").
+/// minima (the tests found two about 0.2 rad apart, within 5e-6 × size of each other); Newton's
+/// method on f_P (sphere_newton.h) starts from the escape directions of the rim's deepest
+/// sampled point and its two neighbours, of the sample with the least F, and from the best
+/// candidate where the rim supports B there; the apex gets a polytope vertex's descents
+/// (docs/math.md → "Flat faces, edges and rims overlapping").
 /// Newton on a rim's f_P takes at most kRimSteps steps and stops within kNearAxis (rad) of the
 /// rim's axis: there f_P has a kink (the disc's normal, a candidate of its own), which Newton
 /// approaches by ever smaller steps and does not reach (uncapped, the overlaps took ten times

@@ -2,9 +2,9 @@
 #define FCL_SUPERELLIPSOID_SRC_FCL_GLUE_PAIRS_SPHERE_NEWTON_H
 
 // Internal: Newton's method on the unit sphere for F(v) = h_A(v) + h_B(−v), two smooth support
-// functions (support_map.h; B may be a single point, h_B(−v) = −v·b): the smooth pairs' search
-// (smooth_pair.cpp) and the polytope overlaps' descent inside a vertex's region
-// (depth_candidates.h). docs/math.md → "Smooth partners: Newton on the sphere".
+// functions (support_map.h; B may be a single point, h_B(−v) = −v·b, or a circle): the smooth
+// pairs' search (smooth_pair.cpp) and the overlaps' descents of a polytope's vertex, a rim and a
+// cone's apex (depth_candidates.h). docs/math.md → "Smooth partners: Newton on the sphere".
 
 #include <Eigen/Core>
 #include <array>
