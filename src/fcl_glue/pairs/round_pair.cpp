@@ -32,6 +32,11 @@ struct Round {
     if (!cone) return u.dot(t) + radial + h * std::abs(uz);
     return u.dot(t) + std::max(h * uz, radial - h * uz);
   }
+  /// Whether the cone's apex supports it along u (its base rim otherwise; false for a cylinder).
+  bool apexSupports(const Vector3<S>& u) const {
+    const S uz = u.dot(z);
+    return cone && h * uz >= r * (u - uz * z).norm() - h * uz;
+  }
   /// A point where h_B(u) is reached: on the rim (or the apex) toward u's radial part; the
   /// centre of the disc where u is along the axis.
   Vector3<S> supportPoint(const Vector3<S>& u) const {
@@ -40,7 +45,7 @@ struct Round {
     const S length = radial.norm();
     const Vector3<S> out = length > S(0) ? Vector3<S>(r * radial / length) : Vector3<S>::Zero();
     if (!cone) return t + (uz >= S(0) ? h : -h) * z + out;
-    if (h * uz >= r * length - h * uz) return t + h * z;  // the apex
+    if (apexSupports(u)) return t + h * z;
     return t - h * z + out;
   }
   Vector3<S> circle(S theta) const { return std::cos(theta) * e1 + std::sin(theta) * e2; }
@@ -219,8 +224,7 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
   // In float the pattern search stays, as for the polytopes (docs/math.md).
   if constexpr (std::is_same_v<S, float>) return depth.refinedBest();
   const Vector3<S> best = depth.best().normal, u = -best;  // B's supporting direction there
-  const S uz = u.dot(b.z), radial = b.r * (u - uz * b.z).norm();
-  const bool apex_supports = b.cone && b.h * uz >= radial - b.h * uz;
+  const bool apex_supports = b.apexSupports(u);
   auto near_axis = [&](const Vector3<S>& v) {
     return (v - v.dot(b.z) * b.z).norm() < S(kNearAxis);
   };
@@ -240,7 +244,7 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
     if (std::abs(lowest - deepest) > 1 && std::abs(lowest - deepest) != kRimPoints - 1) {
       depth.offerDescent(rim, first[lowest].direction, kRimSteps, near_axis);
     }
-    const bool rim_supports = b.cone ? !apex_supports : sides[k] * uz >= S(0);
+    const bool rim_supports = b.cone ? !apex_supports : sides[k] * u.dot(b.z) >= S(0);
     if (rim_supports) depth.offerDescent(rim, best, kRimSteps, near_axis);
   }
   if (b.cone) {
