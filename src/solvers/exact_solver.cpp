@@ -94,8 +94,9 @@ class ExactSolver {
     if (!inside_ && best.error > q_.tolerance) {
       // On elongated shapes the radial start can be far off. The surface points whose normal
       // points at Q, and along the best answer's contact direction, are better starts.
+      // (The shape's mirror symmetry: h(n) = h(|n|), and a component of Q − N can be negative.)
       for (const Vector3<S>& direction : {Vector3<S>(y_), Vector3<S>(y_ - best.point)}) {
-        const Vector3<S> n = direction.normalized();
+        const Vector3<S> n = direction.cwiseAbs().normalized();
         if (n.allFinite()) tryStart(dual_.evaluate(n, false).gradient, &best);
       }
       // Q clamped into the bounding box, then projected radially: on a cigar-like shape this
@@ -250,13 +251,15 @@ class ExactSolver {
   /// n is in N's normal cone to the tolerance: the duality gap h(n) − n·N (h the support
   /// function) is ≥ 0, and ‖Q − N‖ exceeds the distance by at most the gap, since every point
   /// of the shape is at least n·Q − h(n) away. The candidate's error is the larger of the gap
-  /// and Eq. 7 with n (rounding: n is parallel to Q − N); kept if it beats best.
+  /// and Eq. 7 with n (rounding: n is parallel to Q − N); kept if it beats best. A component of
+  /// n can be negative (N a rounding beyond Q on a coordinate plane's side): the shape's mirror
+  /// symmetry gives h(n) = h(|n|), and the support function is evaluated in the first octant.
   void tryContactDirection(Candidate<S>* best) const {
     const Vector3<S> n = (y_ - best->point).normalized();
     if (!n.allFinite()) return;
     Candidate<S> c = *best;
     c.normal = n;
-    const S gap = dual_.value(n) - n.dot(c.point);
+    const S gap = dual_.value(n.cwiseAbs()) - n.dot(c.point);
     c.error = std::isfinite(gap) ? std::max(std::abs(gap), errorAt(c.point, n))
                                  : std::numeric_limits<S>::infinity();
     if (isBetter(c, *best)) *best = c;

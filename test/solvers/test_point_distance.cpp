@@ -514,6 +514,36 @@ TYPED_TEST(PointDistanceTest, OutsideAnswersOnARidgeConverge) {
   }
 }
 
+// Far beyond a vertical ridge, just off a mirror plane (docs/hardening.md, finding 16): a
+// diamond-like cross-section (ε1 = 1.95) with box-like sides (ε2 = 0.062), queried 10–10,000
+// sizes away beside the diamond's tip. Newton stalls on the ridge, the bracketed projection
+// finds the point, and its z lands a rounding beyond Q's: the contact direction then has a
+// component of −1e-25, and its support value was NaN, so the certificate failed. Each query
+// converges and its distance is the reference's.
+TYPED_TEST(PointDistanceTest, FarBesideARidgeTheContactDirectionCertifies) {
+  using S = TypeParam;
+  const auto options = DistanceOptions<S>::of(DistanceMethod::kExact);
+  const Superellipsoid<S> shape = makeShape<S>({1, 1, 1}, 1.9495187327269177, 0.0622863774224241);
+  SCOPED_TRACE(test::describe(shape));
+  const test::ReferenceDistance reference({1, 1, 1}, shape.eps1(), shape.eps2());
+  const double target = test::exactTarget<S>(double(shape.eps1()), double(shape.eps2()));
+  for (double far : {10.0, 2048.0, 1e4}) {
+    for (double offset : {3.8146972656250000e-06, 1e-7, 1e-3}) {
+      for (double sign : {1.0, -1.0}) {
+        const Vector3<S> x(S(-offset), S(-far), S(sign * offset));
+        SCOPED_TRACE("Q = " + std::to_string(x[0]) + ", " + std::to_string(x[1]) + ", " +
+                     std::to_string(x[2]));
+        const auto r = pointDistance(shape, x, options);
+        ASSERT_TRUE(std::isfinite(r.distance) && r.normal.allFinite());
+        EXPECT_TRUE(r.converged) << "error " << r.error << ", " << r.iterations << " iterations";
+        const auto truth = reference.query({x[0], x[1], x[2]});
+        EXPECT_NEAR(double(r.distance), double(truth.distance),
+                    target * shape.size() + 8 * test::evalTolerance<S>() * far);
+      }
+    }
+  }
+}
+
 TYPED_TEST(PointDistanceTest, WorldFrameOverloadPosesTheAnswer) {
   using S = TypeParam;
   const Superellipsoid<S> shape{S(1), S(2), S(0.5), S(0.6), S(1.2)};
