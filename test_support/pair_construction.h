@@ -91,15 +91,16 @@ inline M3 randomRotation(std::mt19937& rng) {
       .toRotationMatrix();
 }
 
-/// A random superellipsoid: exponents in [0.1, 1.9], radii with aspect up to 10:1 around
-/// `size`.
+/// A random superellipsoid: exponents in [e_low, e_high] (by default [0.1, 1.9]), radii with
+/// aspect up to 10:1 around `size`.
 struct RandomShape {
   V3 radii;
   LD e1, e2;
 };
 
-inline RandomShape randomShape(std::mt19937& rng, LD size) {
-  std::uniform_real_distribution<double> e(0.1, 1.9), r(0.1, 1.0);
+inline RandomShape randomShape(std::mt19937& rng, LD size, double e_low = 0.1,
+                               double e_high = 1.9) {
+  std::uniform_real_distribution<double> e(e_low, e_high), r(0.1, 1.0);
   return {V3(size * LD(r(rng)), size * LD(r(rng)), size * LD(r(rng))), LD(e(rng)), LD(e(rng))};
 }
 
@@ -121,9 +122,10 @@ struct Construction {
   V3 a, u;
 };
 
-inline Construction constructShape(std::mt19937& rng, LD size) {
+inline Construction constructShape(std::mt19937& rng, LD size, double e_low = 0.1,
+                                   double e_high = 1.9) {
   Construction c;
-  c.shape = randomShape(rng, size);
+  c.shape = randomShape(rng, size, e_low, e_high);
   const SurfacePoint p = randomSurfacePoint(c.shape, rng);
   const M3 R = randomRotation(rng);
   std::uniform_real_distribution<double> t(-1, 1);

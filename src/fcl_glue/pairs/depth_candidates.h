@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "fcl_glue/pairs/candidates.h"
+#include "fcl_glue/pairs/rolling_certificate.h"
 #include "fcl_glue/pairs/segment_search.h"
 #include "fcl_glue/pairs/sphere_newton.h"
 #include "fcl_superellipsoid/batch_distance.h"
@@ -175,6 +176,15 @@ class DepthCandidates {
   /// every feature's own minimum (a polytope's faces, edge arcs and vertices; docs/math.md).
   PairHit<S> best() const { return {-f_, Vector3<S>(a_ - f_ * v_), a_, v_, -1}; }
   bool found() const { return has_best_; }
+  /// Whether the best candidate is the depth by the superellipsoid's rolling ball
+  /// (rolling_certificate.h): `outside(b)` says how far a point b lies beyond the other shape's
+  /// bounding planes or surfaces, to be within `tolerance` for the best's witness.
+  template <typename Outside>
+  bool certified(const Outside& outside, S tolerance) const {
+    return has_best_ && f_ >= S(0) &&
+           rollingCertified(f_, rollingRadius(*pair_.shape), S(outside(Vector3<S>(a_ - f_ * v_))),
+                            tolerance);
+  }
 
  private:
   /// F at the unit direction v, given the superellipsoid's support point a there.

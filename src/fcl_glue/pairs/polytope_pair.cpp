@@ -45,13 +45,35 @@ struct Polytope {
   std::vector<std::vector<int>> faces;
   std::vector<Vector3<S>> normals;  // outward, unit
   std::vector<Edge> edges;
-  S extent = S(0);  // largest distance between the centroid and a vertex
+  S extent = S(0);    // largest distance between the centroid and a vertex
+  bool flat = false;  // a polygon (a triangle): its faces are the two sides of one loop
 
   /// The support function h(u) = max over the vertices of u·w.
   S support(const Vector3<S>& u) const {
     S h = -std::numeric_limits<S>::infinity();
     for (const Vector3<S>& w : vertices) h = std::max(h, u.dot(w));
     return h;
+  }
+  /// How far x lies beyond the face planes (≤ 0 inside); for a flat polytope, beyond its plane
+  /// or, in the plane, beyond its loop's edges.
+  S outside(const Vector3<S>& x) const {
+    S beyond = -std::numeric_limits<S>::infinity();
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      beyond = std::max(beyond, normals[f].dot(x - vertices[faces[f][0]]));
+    }
+    if (flat && !faces.empty()) {
+      const std::vector<int>& loop = faces[0];
+      const Vector3<S>& n = normals[0];
+      for (std::size_t k = 0; k < loop.size(); ++k) {
+        const Vector3<S>& a = vertices[loop[k]];
+        const Vector3<S> e = vertices[loop[(k + 1) % loop.size()]] - a;
+        // The in-plane normal of the edge, pointing away from the loop's centroid side.
+        Vector3<S> m = e.cross(n).normalized();
+        if (m.dot(vertices[loop[(k + 2) % loop.size()]] - a) > S(0)) m = -m;
+        if (m.allFinite()) beyond = std::max(beyond, m.dot(x - a));
+      }
+    }
+    return beyond;
   }
   /// A vertex where that maximum is reached (the first).
   Vector3<S> supportPoint(const Vector3<S>& u) const {
@@ -102,6 +124,7 @@ void finish(Polytope<S>& p) {
     // extent: in float, 1e-9 × extent alone took a triangle for a solid with one side.
     const S flat = std::max(S(1e-9), S(64) * std::numeric_limits<S>::epsilon()) * p.extent;
     if (std::abs(side) <= flat) {
+      p.flat = true;
       p.normals.push_back(n);
       back_faces.push_back(loop);
       back_normals.push_back(-n);
@@ -232,6 +255,14 @@ std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Polytope<S>&
   return candidates.certified();
 }
 
+/// The world direction v mirrored across the superellipsoid's k-th coordinate plane.
+template <typename S>
+Vector3<S> mirrored(const Pair<S>& pair, const Vector3<S>& v, int k) {
+  Vector3<S> local = pair.X_WS->linear().transpose() * v;
+  local[k] = -local[k];
+  return pair.X_WS->linear() * local;
+}
+
 /// The overlap's depth: the least F over the faces' normals, the vertices' escape directions and
 /// descents, the edges' arcs and MPR's normal (depth_candidates.h). These include every feature's
 /// own minimum, so no pattern search follows (docs/math.md).
@@ -241,6 +272,11 @@ PairHit<S> overlap(const Pair<S>& pair, const Polytope<S>& p, const PairHit<S>& 
   DepthCandidates<S, decltype(support)> depth(pair, support);
   depth.offerDirection(start.normal);
   for (const Vector3<S>& n : p.normals) depth.offerDirection(Vector3<S>(-n));
+  // Where the superellipsoid's rolling ball certifies the best so far (rolling_certificate.h),
+  // the rest is not needed: after the faces, and again after the vertices.
+  const S tolerance = S(kRollingOutsideTolerance) * std::max(pair.shape->size(), p.extent);
+  auto outside = [&p](const Vector3<S>& x) { return p.outside(x); };
+  if (depth.certified(outside, tolerance)) return depth.best();
   Vector3<S> centroid = Vector3<S>::Zero();
   for (const Vector3<S>& w : p.vertices) centroid += w / S(p.vertices.size());
   // A vertex inside the superellipsoid also descends from inside its own region (where F is its
@@ -249,11 +285,19 @@ PairHit<S> overlap(const Pair<S>& pair, const Polytope<S>& p, const PairHit<S>& 
   // proof: docs/math.md).
   const auto escapes = depth.offerPoints(p.vertices);
   for (std::size_t i = 0; i < p.vertices.size(); ++i) {
-    if (escapes[i].distance < S(0)) {
-      depth.offerDescent(SupportMap<S>::ofPoint(p.vertices[i]),
-                         Vector3<S>(centroid - p.vertices[i]));
+    if (!(escapes[i].distance < S(0))) continue;
+    const SupportMap<S> vertex = SupportMap<S>::ofPoint(p.vertices[i]);
+    depth.offerDescent(vertex, Vector3<S>(centroid - p.vertices[i]));
+    // Where the vertex does not support the polytope along its own escape direction, F there is
+    // above h_A(v) − v·w, whose other local minima can be F's: near a mirror plane of the
+    // superellipsoid they mirror the escape direction across it (a rounded shape's overlap with
+    // a triangle was 0.0047 × size too deep: RoundedOverlapsAgainstTheEnumeratedDepth).
+    if (escapes[i].f > -escapes[i].distance + tolerance) {
+      for (int k = 0; k < 3; ++k)
+        depth.offerDescent(vertex, mirrored(pair, escapes[i].direction, k));
     }
   }
+  if (depth.certified(outside, tolerance)) return depth.best();
   for (const Edge& e : p.edges) {
     if (const std::optional<EdgeArc<S>> arc = arcOf(p, e, centroid)) {
       depth.offerEdgeArc(p.vertices[e.i], arc->c1, arc->c2, arc->angle);

@@ -63,6 +63,16 @@ struct Round {
   }
   /// Along a side normal m the support is m·anchor (+ r for the cylinder): the apex, the centre.
   Vector3<S> sideAnchor() const { return cone ? Vector3<S>(t + h * z) : t; }
+  /// How far x lies beyond the discs' planes and the side (≤ 0 inside): the cone's side is the
+  /// surface where the radius is r·(h − height)/(2h), its distance taken along the side's normal.
+  S outside(const Vector3<S>& x) const {
+    const S height = (x - t).dot(z);
+    const S radial = (x - t - height * z).norm();
+    if (!cone) return std::max(std::abs(height) - h, radial - r);
+    const S slant = std::hypot(2 * h, r);
+    const S side = slant > S(0) ? (2 * h * radial - r * (h - height)) / slant : radial;
+    return std::max(-h - height, side);
+  }
 };
 
 template <typename S>
@@ -207,6 +217,12 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
     return b.sideNormalDerivative(theta).dot(b.sideAnchor() - a);
   };
   depth.offerFamily(direction, derivative, S(0), S(2 * M_PI), true);
+  // Where the superellipsoid's rolling ball certifies the best so far (rolling_certificate.h),
+  // the rest is not needed: after the discs and the side, and again after the rims' points.
+  const S tolerance =
+      S(kRollingOutsideTolerance) * std::max(pair.shape->size(), std::hypot(b.r, b.h));
+  auto outside = [&b](const Vector3<S>& x) { return b.outside(x); };
+  if (depth.certified(outside, tolerance)) return depth.best();
   constexpr int kRimPoints = 12;
   std::vector<S> sides;  // the rims: the cylinder's two, the cone's base
   for (S side : {S(1), S(-1)}) {
@@ -221,6 +237,7 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
   const Vector3<S> apex = b.t + b.h * b.z;
   if (b.cone) points.push_back(apex);
   const auto escapes = depth.offerPoints(points);
+  if (depth.certified(outside, tolerance)) return depth.best();
   // In float the pattern search stays, as for the polytopes (docs/math.md).
   if constexpr (std::is_same_v<S, float>) return depth.refinedBest();
   const Vector3<S> best = depth.best().normal, u = -best;  // B's supporting direction there

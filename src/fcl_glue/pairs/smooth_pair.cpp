@@ -6,6 +6,7 @@
 #include <limits>
 #include <vector>
 
+#include "fcl_glue/pairs/rolling_certificate.h"
 #include "fcl_glue/pairs/sphere_newton.h"
 
 namespace fcl_superellipsoid {
@@ -29,14 +30,18 @@ Vector3<S> sphereDirection(int i, int n) {
 
 }  // namespace
 
-template <typename S>
-SmoothPairAnswer<S> solveSmoothPair(const SupportMap<S>& A, const SupportMap<S>& B) {
+/// The answer for A and B; where they overlap, `rolling_radius()` gives ρ_A + ρ_B and
+/// `tolerance` bounds the tangential gradient for the certificate (rolling_certificate.h).
+template <typename S, typename RollingRadius>
+SmoothPairAnswer<S> solveSmoothPair(const SupportMap<S>& A, const SupportMap<S>& B,
+                                    const RollingRadius& rolling_radius, S tolerance) {
   const Vector3<S> centres = B.centre() - A.centre();
   const Vector3<S> first = centres.squaredNorm() > S(0) ? centres : Vector3<S>::UnitZ();
   Probe<S> best = localMinimum(A, B, first);
-  if (!(best.f < S(0))) {
-    // Not found separated: overlapping (or touching), where F may have several local minima.
-    // Newton from the lowest of: both frames' axes, a lattice over the sphere, the first answer.
+  // Not found separated: overlapping (or touching). The first run's minimum is the depth where
+  // the rolling balls certify it; otherwise F may have several local minima, and Newton runs
+  // from the lowest of: both frames' axes, a lattice over the sphere.
+  if (!(best.f < S(0)) && !rollingCertified(best, rolling_radius(), tolerance)) {
     std::vector<Probe<S>> starts;
     auto add = [&](const Vector3<S>& v) { starts.push_back(probe(A, B, v)); };
     for (int i = 0; i < 3; ++i) {
@@ -65,20 +70,26 @@ SmoothPairAnswer<S> solveSmoothPair(const SupportMap<S>& A, const SupportMap<S>&
 template <typename S>
 std::optional<PairHit<S>> smoothHit(const Pair<S>& pair) {
   const SupportMap<S> shape(*pair.shape, *pair.X_WS);
+  // The rolling radii are asked for only where the first run finds an overlap: a
+  // superellipsoid's is computed on its first use (about a millisecond).
+  auto solve = [&](const auto& other, S other_size) {
+    const S tolerance = S(kRollingGradientTolerance) * std::max(pair.shape->size(), other_size);
+    return solveSmoothPair(
+        shape, SupportMap<S>(other, *pair.X_WO),
+        [&] { return rollingRadius(*pair.shape) + rollingRadius(other); }, tolerance);
+  };
   SmoothPairAnswer<S> r;
   if (const auto* other = otherAs<Superellipsoid<S>>(pair, fcl::BV_UNKNOWN)) {
-    r = solveSmoothPair(shape, SupportMap<S>(*other, *pair.X_WO));
+    r = solve(*other, other->size());
   } else if (const auto* other = otherAs<fcl::Ellipsoid<S>>(pair, fcl::GEOM_ELLIPSOID)) {
-    r = solveSmoothPair(shape, SupportMap<S>(*other, *pair.X_WO));
+    r = solve(*other, other->radii.maxCoeff());
   } else {
     return std::nullopt;
   }
   return PairHit<S>{r.distance, r.on_b, r.on_a, r.normal, -1};
 }
 
-#define FSE_INSTANTIATE_SMOOTH_HIT(S)                                                       \
-  template SmoothPairAnswer<S> solveSmoothPair(const SupportMap<S>&, const SupportMap<S>&); \
-  template std::optional<PairHit<S>> smoothHit(const Pair<S>&);
+#define FSE_INSTANTIATE_SMOOTH_HIT(S) template std::optional<PairHit<S>> smoothHit(const Pair<S>&);
 FSE_INSTANTIATE_SMOOTH_HIT(float)
 FSE_INSTANTIATE_SMOOTH_HIT(double)
 

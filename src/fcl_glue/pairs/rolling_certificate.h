@@ -1,0 +1,81 @@
+#ifndef FCL_SUPERELLIPSOID_SRC_FCL_GLUE_PAIRS_ROLLING_CERTIFICATE_H
+#define FCL_SUPERELLIPSOID_SRC_FCL_GLUE_PAIRS_ROLLING_CERTIFICATE_H
+
+// Internal: the rolling-ball certificate of a smooth overlap's depth (docs/math.md → "Smooth
+// partners: Newton on the sphere", "The rolling balls of an overlap").
+//
+// For overlapping convex A and B, F(v) = h_A(v) + h_B(−v) is the support function of the
+// Minkowski difference K = A − B, which holds the origin, and min F over unit v is the origin's
+// depth in K. If a ball of radius ρ_A rolls freely inside A (every principal radius of curvature
+// is at least ρ_A) and one of radius ρ_B inside B, one of radius ρ_A + ρ_B rolls freely inside K
+// (the radii of curvature of K in a direction are those of A and B added). A direction v whose
+// F(v) is at most ρ_A + ρ_B and whose tangential gradient t·(a − b) has length δ then bounds the
+// depth from both sides: F(v) − δ ≤ min F ≤ F(v). It is the point query's rolling-ball argument
+// (docs/math.md → "The rolling-ball certificate") with the origin as the query point and K as
+// the shape. So the overlap's multi-start search can stop at the first local minimum it finds
+// with F(v) within the two radii.
+//
+// A partner with flat faces, edges or rims has no rolling ball (ρ_B = 0) and F has kinks there,
+// so the certificate takes another form: at a candidate v with A's support point a, the point
+// b = a − F(v)·v lies on B's supporting plane along −v; if b lies in B, then a − b = F(v)·v is
+// K's support point along v, and the ball of radius ρ_A inside K that touches there holds the
+// origin's ball of radius F(v) where F(v) ≤ ρ_A: min F = F(v). If b lies δ outside B, that ball's
+// centre moves by δ, and min F ≥ F(v) − δ.
+
+#include <fcl/geometry/shape/ellipsoid.h>
+
+#include <algorithm>
+
+#include "fcl_glue/pairs/sphere_newton.h"
+#include "fcl_superellipsoid/superellipsoid.h"
+#include "shape/symmetric2.h"
+
+namespace fcl_superellipsoid {
+namespace detail {
+
+/// The tolerances, × the larger shape's size: on the tangential gradient of a smooth pair's
+/// minimum, and on how far a flat partner's witness may lie beyond its bounding planes (the pairs'
+/// depth target is 1e-9 × size).
+constexpr double kRollingGradientTolerance = 1e-10;
+constexpr double kRollingOutsideTolerance = 1e-12;
+
+/// The radius of a ball that rolls freely inside the shape: the superellipsoid's lower bound on
+/// its smallest principal radius of curvature (0 where an exponent is > 1; computed on the
+/// shape's first use, then kept).
+template <typename S>
+S rollingRadius(const Superellipsoid<S>& shape) {
+  return shape.minRadiusOfCurvature();
+}
+
+/// An ellipsoid's smallest principal radius of curvature: c²/a for its smallest and largest
+/// semi-axes c and a (at the ends of the longest axis).
+template <typename S>
+S rollingRadius(const fcl::Ellipsoid<S>& shape) {
+  const S largest = shape.radii.maxCoeff(), smallest = shape.radii.minCoeff();
+  return largest > S(0) ? smallest * (smallest / largest) : S(0);
+}
+
+/// Whether p, a direction of an overlap's F, gives its minimum to within `tolerance` by the
+/// rolling balls of radii summing to `rolling_radius` (above): 0 ≤ F(v) ≤ rolling_radius and a
+/// tangential gradient of length at most `tolerance`.
+template <typename S>
+bool rollingCertified(const Probe<S>& p, S rolling_radius, S tolerance) {
+  if (!(p.f >= S(0) && p.f <= rolling_radius)) return false;
+  const auto [t1, t2] = tangents(p.v);
+  const Vector3<S> g = p.a - p.b;
+  return hypot2(t1.dot(g), t2.dot(g)) <= tolerance;
+}
+
+/// The flat partners' form (above): F(v) = f at a candidate whose witness b = a − f·v lies
+/// `outside` beyond B's bounding planes or surfaces (a lower bound on b's distance from B, equal to
+/// it up to a factor set by B's angles: `tolerance` is of the order of rounding), with ρ_A =
+/// `rolling_radius`.
+template <typename S>
+bool rollingCertified(S f, S rolling_radius, S outside, S tolerance) {
+  return f >= S(0) && f <= rolling_radius && outside <= tolerance;
+}
+
+}  // namespace detail
+}  // namespace fcl_superellipsoid
+
+#endif  // FCL_SUPERELLIPSOID_SRC_FCL_GLUE_PAIRS_ROLLING_CERTIFICATE_H
