@@ -59,6 +59,23 @@ PointDistanceResult<S> expectConvergedNoFartherThanReference(
   return r;
 }
 
+/// An outside query on a crease, where the answer is certified by its contact direction: finite,
+/// converged, at the reference's distance to `tolerance` (length units). Returns the answer.
+template <typename S>
+PointDistanceResult<S> expectConvergedAtTheReference(const Superellipsoid<S>& shape,
+                                                     const Vector3<S>& x,
+                                                     const test::ReferenceDistance& reference,
+                                                     double tolerance) {
+  SCOPED_TRACE("Q = " + std::to_string(x[0]) + ", " + std::to_string(x[1]) + ", " +
+               std::to_string(x[2]));
+  const auto r = pointDistance(shape, x, DistanceOptions<S>::of(DistanceMethod::kExact));
+  EXPECT_TRUE(std::isfinite(r.distance) && r.normal.allFinite());
+  EXPECT_TRUE(r.converged) << "error " << r.error << ", " << r.iterations << " iterations";
+  const auto truth = reference.query({x[0], x[1], x[2]});
+  EXPECT_NEAR(double(r.distance), double(truth.distance), tolerance);
+  return r;
+}
+
 template <typename S>
 class PointDistanceTest : public ::testing::Test {};
 TYPED_TEST_SUITE(PointDistanceTest, test::Scalars);
@@ -485,7 +502,6 @@ TYPED_TEST(PointDistanceTest, NearlyRoundShapesConvergeNearTheirCentre) {
 // from the nearest point to Q.
 TYPED_TEST(PointDistanceTest, OutsideAnswersOnARidgeConverge) {
   using S = TypeParam;
-  const auto options = DistanceOptions<S>::of(DistanceMethod::kExact);
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-1, 1);
   const std::array<double, 5> shapes[] = {{1, 1, 1e-3, 0.02, 1.9}, {1, 1, 1e-2, 1.9, 1.9}};
@@ -498,13 +514,7 @@ TYPED_TEST(PointDistanceTest, OutsideAnswersOnARidgeConverge) {
       const double angle = 3.14159 * u(rng), beyond = 1.005 + 0.1 * (u(rng) + 1);
       const Vector3<S> x(S(p[0] * beyond * std::cos(angle)), S(p[1] * beyond * std::sin(angle)),
                          S(3 * p[2] * u(rng)));
-      SCOPED_TRACE("Q = " + std::to_string(x[0]) + ", " + std::to_string(x[1]) + ", " +
-                   std::to_string(x[2]));
-      const auto r = pointDistance(shape, x, options);
-      ASSERT_TRUE(std::isfinite(r.distance) && r.normal.allFinite());
-      EXPECT_TRUE(r.converged) << "error " << r.error << ", " << r.iterations << " iterations";
-      const auto truth = reference.query({x[0], x[1], x[2]});
-      EXPECT_NEAR(double(r.distance), double(truth.distance), target * shape.size());
+      const auto r = expectConvergedAtTheReference(shape, x, reference, target * shape.size());
       EXPECT_NEAR(double(test::referenceGauge(shape, r.nearest_point)), 1.0,
                   4 * test::evalTolerance<S>());
       EXPECT_NEAR(double(r.normal.norm()), 1.0, 4 * test::evalTolerance<S>());
@@ -522,7 +532,6 @@ TYPED_TEST(PointDistanceTest, OutsideAnswersOnARidgeConverge) {
 // converges and its distance is the reference's.
 TYPED_TEST(PointDistanceTest, FarBesideARidgeTheContactDirectionCertifies) {
   using S = TypeParam;
-  const auto options = DistanceOptions<S>::of(DistanceMethod::kExact);
   const Superellipsoid<S> shape = makeShape<S>({1, 1, 1}, 1.9495187327269177, 0.0622863774224241);
   SCOPED_TRACE(test::describe(shape));
   const test::ReferenceDistance reference({1, 1, 1}, shape.eps1(), shape.eps2());
@@ -531,14 +540,8 @@ TYPED_TEST(PointDistanceTest, FarBesideARidgeTheContactDirectionCertifies) {
     for (double offset : {3.8146972656250000e-06, 1e-7, 1e-3}) {
       for (double sign : {1.0, -1.0}) {
         const Vector3<S> x(S(-offset), S(-far), S(sign * offset));
-        SCOPED_TRACE("Q = " + std::to_string(x[0]) + ", " + std::to_string(x[1]) + ", " +
-                     std::to_string(x[2]));
-        const auto r = pointDistance(shape, x, options);
-        ASSERT_TRUE(std::isfinite(r.distance) && r.normal.allFinite());
-        EXPECT_TRUE(r.converged) << "error " << r.error << ", " << r.iterations << " iterations";
-        const auto truth = reference.query({x[0], x[1], x[2]});
-        EXPECT_NEAR(double(r.distance), double(truth.distance),
-                    target * shape.size() + 8 * test::evalTolerance<S>() * far);
+        expectConvergedAtTheReference(shape, x, reference,
+                                      target * shape.size() + 8 * test::evalTolerance<S>() * far);
       }
     }
   }
