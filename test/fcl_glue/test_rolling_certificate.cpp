@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "enumerated_depth.h"
 #include "fcl_glue/pairs/rolling_certificate.h"
 #include "fcl_glue/pairs/support_map.h"
 #include "fcl_superellipsoid/point_distance.h"
@@ -41,12 +42,7 @@ std::vector<Vector3<double>> startDirections(const fcl::Transform3d& X_A,
       out.push_back(sign * X_B.linear().col(i));
     }
   }
-  const int n = 32;
-  for (int i = 0; i < n; ++i) {
-    const double z = 1.0 - (2.0 * i + 1.0) / n, r = std::sqrt(std::max(0.0, 1.0 - z * z));
-    out.emplace_back(r * std::cos(2.39996322972865332 * i), r * std::sin(2.39996322972865332 * i),
-                     z);
-  }
+  for (const V3& v : test::fibonacciLattice(32)) out.push_back(v.cast<double>());
   return out;
 }
 
@@ -89,7 +85,7 @@ TEST(RollingCertificate, CertifiesOnlyTheGlobalOverlap) {
       const Probe<double> m = localMinimum(A, B, start);
       const bool is_global = m.f <= global + 1e-9 * size_max;
       if (!is_global) ++local_only;
-      if (!rollingCertified(m, rolling, 1e-10 * size_max)) continue;
+      if (!rollingCertified(m, rolling, kRollingGradientTolerance * size_max)) continue;
       ++certified;
       if (!is_global) ++local_certified;
       worst = std::max(worst, (m.f - global) / size_max);
@@ -180,11 +176,7 @@ TEST(RollingCertificate, EllipsoidRadiusIsItsSmallestRadiusOfCurvature) {
     const fcl::Ellipsoidd e(Vector3<double>(d.cast<double>()));
     const LD rho = LD(rollingRadius(e));
     LD smallest = std::numeric_limits<LD>::infinity();
-    const int n = 20000;
-    for (int i = 0; i < n; ++i) {
-      const LD z = 1 - (2 * LD(i) + 1) / n, r = std::sqrt(std::max(LD(0), 1 - z * z));
-      const V3 u(r * std::cos(LD(2.39996322972865332) * i),
-                 r * std::sin(LD(2.39996322972865332) * i), z);
+    for (const V3& u : test::fibonacciLattice(20000)) {
       const V3 du = d.cwiseProduct(u);
       const LD h = du.norm();
       const V3 g = d.cwiseProduct(du) / h;
