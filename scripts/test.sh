@@ -7,12 +7,13 @@
 #                                share (thread safety, batched queries, the lazily computed rolling
 #                                radius, the FCL traversal that calls the batched queries, the
 #                                cloth and the bowl scenes on 1 and 2 threads, the interposer's
-#                                first calls)
+#                                first calls); it builds only the test programs that hold them
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=build
 flags=(-DCMAKE_BUILD_TYPE=Release)
 deps=()
+targets=()
 tests=()
 case "${1:-}" in
   --sanitize)
@@ -24,12 +25,13 @@ case "${1:-}" in
   --tsan)
     build=build-tsan
     flags=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DFSE_SANITIZE_THREAD=ON -DFSE_BUILD_BENCH=OFF)
+    targets=(--target test_shape test_threads test_batch test_fcl_glue test_interpose test_sim)
     tests=(-R "ThreadSafety|Interpose.FirstCallsRace|BatchDistance|RollingRadiusIsComputedOnce|FclIntegration|SameResultsForOneAndTwoThreads|OneAndTwoThreadsGiveIdenticalResults") ;;
   "") ;;
   *) echo "usage: scripts/test.sh [--sanitize | --tsan]" >&2; exit 2 ;;
 esac
 scripts/install-deps.sh "${deps[@]}"
 cmake -S . -B "$build" "${flags[@]}" -DFSE_BUILD_TESTS=ON
-cmake --build "$build" --parallel "$(nproc)"
+cmake --build "$build" --parallel "$(nproc)" "${targets[@]}"
 cd "$build"
 ctest --output-on-failure --parallel "$(nproc)" "${tests[@]}"

@@ -1,6 +1,6 @@
-// FCL's collision table for GJKSolver_libccd<float>, instantiated here once (see fcl_tables.h).
-#include "fcl_glue/fcl_tables.h"
-#include "fcl_superellipsoid/fcl_integration.h"
+// FCL's collision table for GJKSolver_libccd<float>, instantiated here once (fcl_table_templates.h;
+// fcl_integration.h declares it extern).
+#include "fcl_glue/fcl_table_templates.h"
 
-FSE_DEFINE_TABLE(CollisionFunctionMatrix, getCollisionFunctionLookTable, collision_matrix,
-                 collisionEntry, float, registerCollisionTableFloat)
+FSE_FCL_TABLE(, CollisionFunctionMatrix, getCollisionFunctionLookTable,
+              ::fcl::detail::GJKSolver_libccd<float>)

@@ -1,6 +1,6 @@
-// FCL's distance table for GJKSolver_libccd<double>, instantiated here once (see fcl_tables.h).
-#include "fcl_glue/fcl_tables.h"
-#include "fcl_superellipsoid/fcl_integration.h"
+// FCL's distance table for GJKSolver_libccd<double>, instantiated here once (fcl_table_templates.h;
+// fcl_integration.h declares it extern).
+#include "fcl_glue/fcl_table_templates.h"
 
-FSE_DEFINE_TABLE(DistanceFunctionMatrix, getDistanceFunctionLookTable, distance_matrix,
-                 distanceEntry, double, registerDistanceTableDouble)
+FSE_FCL_TABLE(, DistanceFunctionMatrix, getDistanceFunctionLookTable,
+              ::fcl::detail::GJKSolver_libccd<double>)

@@ -9,8 +9,8 @@
 // Every entry checks the dynamic type (another user shape, or a BVHModel of an unknown BV
 // type, also reports BV_UNKNOWN) and answers with pairDistance / pairCollide.
 //
-// Each table is instantiated in its own translation unit (fcl_{distance,collision}_table_
-// {double,float}.cpp) so the four heavy compiles run in parallel.
+// The tables themselves are instantiated in fcl_{distance,collision}_table_{double,float}.cpp
+// (fcl_table_templates.h); the entries are written by registration.cpp.
 
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
@@ -58,25 +58,7 @@ void writeEntries(Matrix& matrix, Entry entry) {
   }
 }
 
-void registerDistanceTableDouble();
-void registerDistanceTableFloat();
-void registerCollisionTableDouble();
-void registerCollisionTableFloat();
-
 }  // namespace detail
 }  // namespace fcl_superellipsoid
-
-/// The body of one table TU: instantiates FCL's Matrix<GJKSolver_libccd<S>> and its getter
-/// (the heavy part), and defines register_fn, which writes our entries into that table.
-#define FSE_DEFINE_TABLE(Matrix, getter, member, entry, S, register_fn)                        \
-  namespace fcl {                                                                              \
-  namespace detail {                                                                           \
-  template struct Matrix<GJKSolver_libccd<S>>;                                                 \
-  }                                                                                            \
-  template detail::Matrix<detail::GJKSolver_libccd<S>>& getter<detail::GJKSolver_libccd<S>>(); \
-  }                                                                                            \
-  void fcl_superellipsoid::detail::register_fn() {                                             \
-    writeEntries(fcl::getter<fcl::detail::GJKSolver_libccd<S>>().member, &entry<S>);           \
-  }
 
 #endif  // FCL_SUPERELLIPSOID_SRC_FCL_GLUE_FCL_TABLES_H

@@ -9,13 +9,24 @@
 namespace fcl_superellipsoid {
 
 namespace detail {
+namespace {
+
+/// Writes the entries into the distance and collision tables for GJKSolver_libccd<S> (instantiated
+/// in fcl_{distance,collision}_table_S.cpp).
+template <typename S>
+void registerTables() {
+  using Solver = fcl::detail::GJKSolver_libccd<S>;
+  writeEntries(fcl::getDistanceFunctionLookTable<Solver>().distance_matrix, &distanceEntry<S>);
+  writeEntries(fcl::getCollisionFunctionLookTable<Solver>().collision_matrix, &collisionEntry<S>);
+}
+
+}  // namespace
+
 void registerWithFclOnce() {
   static std::once_flag once;
   std::call_once(once, [] {
-    registerDistanceTableDouble();
-    registerDistanceTableFloat();
-    registerCollisionTableDouble();
-    registerCollisionTableFloat();
+    registerTables<double>();
+    registerTables<float>();
   });
 }
 }  // namespace detail

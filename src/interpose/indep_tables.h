@@ -8,18 +8,11 @@
 // declarations keep plain_calls.cpp from instantiating them again. They hold FCL's entries
 // only: the superellipsoid's pairs never reach them (plain_calls.cpp).
 
-#include <fcl/narrowphase/collision.h>
-#include <fcl/narrowphase/distance.h>
+#include "fcl_glue/fcl_table_templates.h"
 
-namespace fcl {
-namespace detail {
-extern template struct DistanceFunctionMatrix<GJKSolver_indep<double>>;
-extern template struct CollisionFunctionMatrix<GJKSolver_indep<double>>;
-}  // namespace detail
-extern template detail::DistanceFunctionMatrix<detail::GJKSolver_indep<double>>&
-getDistanceFunctionLookTable<detail::GJKSolver_indep<double>>();
-extern template detail::CollisionFunctionMatrix<detail::GJKSolver_indep<double>>&
-getCollisionFunctionLookTable<detail::GJKSolver_indep<double>>();
-}  // namespace fcl
+FSE_FCL_TABLE(extern, DistanceFunctionMatrix, getDistanceFunctionLookTable,
+              ::fcl::detail::GJKSolver_indep<double>)
+FSE_FCL_TABLE(extern, CollisionFunctionMatrix, getCollisionFunctionLookTable,
+              ::fcl::detail::GJKSolver_indep<double>)
 
 #endif  // FCL_SUPERELLIPSOID_SRC_INTERPOSE_INDEP_TABLES_H

@@ -1,7 +1,9 @@
 # Consumes the installed package from an out-of-tree project (test/consumer/).
 #   BUILD_DIR set:   install that build tree (the one under test) into a temporary prefix.
 #   BUILD_DIR empty: configure and build the library afresh with BUILD_SHARED_LIBS=${BUILD_SHARED}
-#                    (so the suite checks the other library kind too), then install it.
+#                    (so the suite checks the other library kind too), then install it. That
+#                    build is unoptimised (Debug, -O0): it checks how the kind is packaged and
+#                    linked, not its speed, in half the compile time of a Release build.
 # Then configure, build and run the consumer against the prefix.
 file(REMOVE_RECURSE ${WORK_DIR})
 set(prefix ${WORK_DIR}/prefix)
@@ -14,7 +16,7 @@ endfunction()
 if(NOT BUILD_DIR)
   set(BUILD_DIR ${WORK_DIR}/lib-build)
   run(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${BUILD_DIR} -G ${GENERATOR}
-      -DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=${BUILD_SHARED}
+      -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-O0 -DBUILD_SHARED_LIBS=${BUILD_SHARED}
       -DFSE_BUILD_TESTS=OFF -DFSE_BUILD_BENCH=OFF)
   run(${CMAKE_COMMAND} --build ${BUILD_DIR} --parallel 2)
 endif()
