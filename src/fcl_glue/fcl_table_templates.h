@@ -3,12 +3,11 @@
 
 // Internal: FCL's function tables as templates we instantiate ourselves. Debian's libfcl keeps
 // its own tables private (docs/fcl-notes.md), so this project instantiates the ones it reads:
-// GJKSolver_libccd<float/double> (fcl_tables.h, with the superellipsoid's entries),
-// GJKSolver_indep<float> (the float front end's other pairs: indep_float_tables.h) and
-// GJKSolver_indep<double> (the interposer: interpose/indep_tables.h). Each table is 30–60 s of
-// compile time, so each has its own translation unit, which holds FCL's code and nothing of ours
-// (src/CMakeLists.txt compiles those units uninstrumented in the sanitizer builds), and every
-// other unit sees the table declared extern.
+// GJKSolver_libccd<float/double> (fcl_tables.h, with the superellipsoid's entries) and
+// GJKSolver_indep<float> and <double> (the float front end's and the interposer's other pairs:
+// indep_tables.h). Each table is 30–60 s of compile time, so each has its own translation unit,
+// which holds FCL's code and nothing of ours (src/CMakeLists.txt compiles those units
+// uninstrumented in the sanitizer builds), and every other unit sees the table declared extern.
 
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>

@@ -1,5 +1,6 @@
-// FCL's distance table for GJKSolver_indep<double>, instantiated here once (indep_tables.h).
-#include "interpose/indep_tables.h"
+// FCL's distance table for GJKSolver_indep<double>, instantiated here once
+// (fcl_glue/indep_tables.h).
+#include "fcl_glue/indep_tables.h"
 
 FSE_FCL_TABLE(, DistanceFunctionMatrix, getDistanceFunctionLookTable,
               ::fcl::detail::GJKSolver_indep<double>)

@@ -12,10 +12,10 @@
 #include <iostream>
 
 #include "common/invalid_argument.h"
+#include "fcl_glue/indep_tables.h"
 #include "fcl_glue/pairs/pairs.h"
 #include "fcl_superellipsoid/fcl_integration.h"
 #include "fcl_superellipsoid/interpose.h"
-#include "interpose/indep_tables.h"
 
 namespace fcl_superellipsoid {
 namespace interpose {
