@@ -25,6 +25,7 @@
 #include <atomic>
 #include <iosfwd>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "fcl_superellipsoid/distance_options.h"
@@ -78,6 +79,36 @@ class CachedValue {
 
  private:
   mutable std::atomic<S> value_{std::numeric_limits<S>::quiet_NaN()};
+};
+
+template <typename S>
+class DirectionCover;  // src/shape/direction_cover.h
+
+/// The shape's DirectionCover, built on first use and then kept (copies share it). Thread-safe:
+/// threads that race on the first use each build one and the first stored is the one kept, so a
+/// reference handed out stays valid as long as the shape.
+template <typename S>
+class CachedCover {
+ public:
+  CachedCover() = default;
+  CachedCover(const CachedCover& other) : cover_(std::atomic_load(&other.cover_)) {}
+  CachedCover& operator=(const CachedCover& other) {
+    std::atomic_store(&cover_, std::atomic_load(&other.cover_));
+    return *this;
+  }
+  template <typename Build>
+  const DirectionCover<S>& get(const Build& build) const {
+    std::shared_ptr<const DirectionCover<S>> cover = std::atomic_load(&cover_);
+    if (!cover) {
+      std::shared_ptr<const DirectionCover<S>> built = build();
+      // Keeps the first one stored; `cover` receives it if another thread won.
+      if (std::atomic_compare_exchange_strong(&cover_, &cover, built)) cover = built;
+    }
+    return *cover;
+  }
+
+ private:
+  mutable std::shared_ptr<const DirectionCover<S>> cover_;
 };
 }  // namespace detail
 
@@ -146,6 +177,11 @@ class FSE_EXPORT Superellipsoid : public fcl::ShapeBase<S> {
   /// a millisecond; the Exact solver calls it for the first inside query), then kept.
   S minRadiusOfCurvature() const;
 
+  /// Internal, the Exact solver's (src/shape/direction_cover.h): support points over a cover of
+  /// the directions, for its first start and its certificate inside the shape. Built on the
+  /// first call (about 0.1 ms, 1,008 support points), then kept.
+  const detail::DirectionCover<S>& directionCover() const;
+
   /// The options FCL queries against this shape use (fcl_integration.h: mesh vertices,
   /// spheres). Default: the Exact method with its default tolerance.
   const DistanceOptions<S>& queryOptions() const { return query_options_; }
@@ -172,6 +208,7 @@ class FSE_EXPORT Superellipsoid : public fcl::ShapeBase<S> {
   S eps2_;
   DistanceOptions<S> query_options_;
   detail::CachedValue<S> min_radius_of_curvature_;
+  detail::CachedCover<S> direction_cover_;
 };
 
 template <typename S>

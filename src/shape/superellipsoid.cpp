@@ -1,12 +1,14 @@
 #include "fcl_superellipsoid/superellipsoid.h"
 
 #include <cmath>
+#include <memory>
 #include <ostream>
 #include <string>
 
 #include "common/invalid_argument.h"
 #include "fcl_glue/registration.h"
 #include "shape/curvature.h"
+#include "shape/direction_cover.h"
 #include "shape/nested_norm.h"
 #include "shape/octant.h"
 
@@ -85,6 +87,12 @@ S Superellipsoid<S>::minRadiusOfCurvature() const {
     return static_cast<S>(
         detail::minRadiusOfCurvature(radii_.template cast<double>(), eps1_, eps2_));
   });
+}
+
+template <typename S>
+const detail::DirectionCover<S>& Superellipsoid<S>::directionCover() const {
+  return direction_cover_.get(
+      [this] { return std::make_shared<const detail::DirectionCover<S>>(*this); });
 }
 
 template <typename S>

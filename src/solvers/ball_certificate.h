@@ -160,6 +160,25 @@ HessianBound<S> quickHessianNormBound(const NestedNorm<S>& gauge, const Vector3<
   return bound;
 }
 
+/// True if M·d ≤ ‖∇G(N)‖ holds (with a 1 % margin for the bound's rounding) for M the bound over
+/// the first-octant box [lo, hi], which holds every segment from N (the answer, on the surface)
+/// to a point of the ball it has to certify; the crease terms integrated along such a segment.
+template <typename S>
+bool hessianBoxCertifies(const NestedNorm<S>& gauge, const Vector3<S>& lo, const Vector3<S>& hi,
+                         const Vector3<S>& nearest, const Vector3<S>& gradient_at_n, S distance) {
+  if (lo[0] == S(0) && lo[1] == S(0)) return false;  // the z axis: decided without pow()
+  auto holds = [&](const HessianBound<S>& bound) {
+    S m = bound.regular;
+    for (int i = 0; i < 3; ++i) {
+      if (bound.crease[i] == S(0)) continue;
+      const S k = (i < 2 ? gauge.p1 : gauge.p2) - S(2);
+      m += S(2) * bound.crease[i] * std::pow(nearest[i], k) / (S(2) + k);  // ∞ at N on it
+    }
+    return S(1.01) * m * distance <= gradient_at_n.norm();
+  };
+  return holds(quickHessianNormBound(gauge, lo, hi)) || holds(hessianNormBound(gauge, lo, hi));
+}
+
 /// The certificate above for a converged inside answer, in the first octant: Q (y), its
 /// nearest point N (on the surface) with the gauge's gradient there, the distance d = ‖Q − N‖
 /// and Eq. 7's error. The ball B(Q', d) lies within d + error of Q; its box is clamped to the
@@ -173,17 +192,31 @@ bool hessianBallCertified(const NestedNorm<S>& gauge, const Vector3<S>& y,
   const S reach = distance + error;
   const Vector3<S> lo = (y.array() - reach).max(S(0)).matrix();
   const Vector3<S> hi = (y.array() + reach).matrix();
-  if (lo[0] == S(0) && lo[1] == S(0)) return false;  // the z axis: decided without pow()
-  auto holds = [&](const HessianBound<S>& bound) {
-    S m = bound.regular;
-    for (int i = 0; i < 3; ++i) {
-      if (bound.crease[i] == S(0)) continue;
-      const S k = (i < 2 ? gauge.p1 : gauge.p2) - S(2);
-      m += S(2) * bound.crease[i] * std::pow(nearest[i], k) / (S(2) + k);  // ∞ at N on it
-    }
-    return S(1.01) * m * distance <= gradient_at_n.norm();
-  };
-  return holds(quickHessianNormBound(gauge, lo, hi)) || holds(hessianNormBound(gauge, lo, hi));
+  return hessianBoxCertifies(gauge, lo, hi, nearest, gradient_at_n, distance);
+}
+
+/// The same certificate for the part of the ball within `radius` of N only (docs/math.md →
+/// "The direction cover"). A point P of B(Q', d) with ‖P − N‖ ≤ r is N − a·n + b (b ⊥ n,
+/// ‖b‖ ≤ r) with a ≥ ‖P − N‖²/(2d); on the sphere a = ‖P − N‖²/(2d) ≤ r²/(2d). Mirrored into
+/// the octant (G takes the same value there) P stays in the ball, no farther from N, and a
+/// does not grow (n ≥ 0), so it lies in the slab 0 ≤ a ≤ r²/(2d), ‖b‖ ≤ r of the octant, as
+/// does its segment from N. Over that slab's box the Taylor bound holds when M·d ≤ ‖∇G(N)‖
+/// (for a ≥ ‖P − N‖²/(2d), ½·M·‖P − N‖² ≤ M·d·a ≤ ‖∇G(N)‖·a), so G ≤ 1 on the sphere's points
+/// within r of N; the direction cover's cap (DirectionCover::capRadius) places the rest of
+/// the sphere inside, and G, convex, is at most 1 over the whole ball.
+template <typename S>
+bool hessianCapCertified(const NestedNorm<S>& gauge, const Vector3<S>& nearest,
+                         const Vector3<S>& normal, const Vector3<S>& gradient_at_n, S distance,
+                         S radius) {
+  const S depth = radius * radius / (S(2) * distance);
+  Vector3<S> lo, hi;
+  for (int i = 0; i < 3; ++i) {
+    // ‖b‖ ≤ r with b ⊥ n: |b_i| ≤ r·√(1 − n_i²).
+    const S lateral = radius * std::sqrt(std::max(S(0), S(1) - normal[i] * normal[i]));
+    lo[i] = std::max(S(0), nearest[i] - depth * normal[i] - lateral);
+    hi[i] = nearest[i] + lateral;
+  }
+  return hessianBoxCertifies(gauge, lo, hi, nearest, gradient_at_n, distance);
 }
 
 }  // namespace detail

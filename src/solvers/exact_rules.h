@@ -116,6 +116,23 @@ constexpr double kTangentHelperSwitch = 0.6;
 /// Inside, a query with G(Q) below this is "deep": the centre's candidates may be nearer.
 constexpr double kDeepGauge = 0.5;
 
+/// Inside, a query with G(Q) below this ("deeper") uses the direction cover: its start is
+/// compared with the radial one and the nearer goes first, and its certificate is tried where
+/// the Hessian ball's fails. Above it, near the surface, the radial start goes first and the
+/// Hessian ball certifies about as often as the cover would, at a fraction of its cost (the
+/// cover's start is then the second start, its certificate not tried).
+constexpr double kCoverGauge = 0.9;
+
+/// The direction cover's certificate gives up on a cap wider than this chord (about 44°): the
+/// Hessian bound over a box of half-width 2·d·θ about the answer then rarely holds, and the
+/// search for the cap's cells would cost more than the starts it could save.
+constexpr double kCoverCapLimit = 0.75;
+
+/// The direction cover's certificate is tried on at most this many answers of one query (the
+/// first converged answer and the first better one): where it fails on both, the answer is
+/// near a crease or a tie of competing minima, and each further try costs about a Newton start.
+constexpr int kCoverAttempts = 2;
+
 /// Inside, when the answer is farther than this fraction of a cross-section's smaller radius,
 /// the solver also starts along that cross-section's diagonal.
 constexpr double kDiagonalStartDepth = 0.25;

@@ -40,6 +40,7 @@
 #include <cmath>
 #include <utility>
 
+#include "shape/direction_cover.h"
 #include "shape/nested_norm.h"
 #include "solvers/ball_certificate.h"
 #include "solvers/exact_rules.h"
@@ -89,7 +90,20 @@ class ExactSolver {
     const bool warm = !inside_ && q_.hint != nullptr && !q_.hint->isZero(S(0));
     // Outside the problem is convex: a warm start that converges is the answer.
     const Candidate<S> radial = candidateFrom(y_, at_y);
-    Candidate<S> best = refine(warm ? candidateOnRay(q_.hint->cwiseAbs()) : radial);
+    Candidate<S> first = warm ? candidateOnRay(q_.hint->cwiseAbs()) : radial;
+    if (inside_ && g_y < S(rules::kCoverGauge)) {
+      // Deeper inside, the first start is the nearer to Q of the radial projection and the
+      // direction cover's guess of the nearest point's normal (shape/direction_cover.h), often
+      // the second (the radial projection heads for a box-like shape's corners). The other is
+      // the second start (searchInside).
+      const Vector3<S> guess = q_.shape.directionCover().startNear(y_);
+      second_start_ = guess;
+      if ((guess - y_).squaredNorm() < (radial.point - y_).squaredNorm()) {
+        second_start_ = radial.point;
+        first = candidateOnRay(guess);
+      }
+    }
+    Candidate<S> best = refine(first);
     if (warm && best.error > q_.tolerance) tryStart(radial, &best);
     if (!inside_ && best.error > q_.tolerance) {
       // On elongated shapes the radial start can be far off. The surface points whose normal
@@ -136,8 +150,14 @@ class ExactSolver {
       if (rules::certifiedGlobal(distance, q_.tolerance, rolling_radius)) return true;
       if (best->point == checked) return false;
       checked = best->point;
-      return hessianBallCertified(primal_, y_, best->point, best->gradient, distance, best->error);
+      return hessianBallCertified(primal_, y_, best->point, best->gradient, distance,
+                                  best->error) ||
+             (g_y < S(rules::kCoverGauge) && coverCertified(*best, distance));
     };
+    if (certified()) return;
+    // The second start: the one solve() did not take (the cover's, unless it was compared).
+    tryStart(second_start_.isZero(S(0)) ? q_.shape.directionCover().startNear(y_) : second_start_,
+             best);
     if (certified()) return;
     for (const Vector3<S>& start : axisProjections()) {
       tryStart(start, best);
@@ -182,6 +202,26 @@ class ExactSolver {
       const Candidate<S> other = solveAtCentre();
       if (isBetter(other, *best)) *best = other;
     }
+  }
+
+  /// The direction cover's certificate (docs/math.md → "The direction cover") for a converged
+  /// inside answer c at distance d from Q: the ball B(Q', d) with Q' = N − d·n lies inside the
+  /// shape if every direction n with F(n) = h(n) − n·Q < d + ‖Q − Q'‖ lies within θ of N's
+  /// normal (DirectionCover::capRadius) and the Hessian bound holds over the box of half-width
+  /// 2·d·θ about N (hessianCapCertified): a point of the ball outside the shape would have its
+  /// nearest surface point's normal within θ, and so lie within 2·d·θ of N. Needs Q' in the
+  /// first octant (the mirror argument); a rounding outside it is left to the other starts.
+  bool coverCertified(const Candidate<S>& c, S distance) {
+    if (cover_attempts_ == rules::kCoverAttempts) return false;
+    ++cover_attempts_;
+    const Vector3<S> centre = c.point - distance * c.normal;
+    if (!(centre.minCoeff() >= S(0))) return false;
+    const S need = distance + (centre - y_).norm();
+    const S theta =
+        q_.shape.directionCover().capRadius(y_, c.normal, need, S(rules::kCoverCapLimit));
+    if (!(theta <= S(rules::kCoverCapLimit))) return false;
+    return hessianCapCertified(primal_, c.point, c.normal, c.gradient, distance,
+                               S(2.01) * distance * theta);
   }
 
   /// Near the axis of a (nearly) round cross-section the nearest points form a (nearly)
@@ -623,7 +663,9 @@ class ExactSolver {
   const Query<S>& q_;
   Vector3<S> y_;
   NestedNorm<S> primal_, dual_;
-  bool primal_first_;  // which formulation refine() tries first
+  bool primal_first_;       // which formulation refine() tries first
+  int cover_attempts_ = 0;  // coverCertified's, at most exact_rules::kCoverAttempts
+  Vector3<S> second_start_ = Vector3<S>::Zero();  // inside: the start solve() did not take, if any
   bool inside_ = false;
   S sign_ = S(1);
   int iterations_ = 0;

@@ -1,0 +1,79 @@
+#ifndef FCL_SUPERELLIPSOID_SRC_SHAPE_DIRECTION_COVER_H
+#define FCL_SUPERELLIPSOID_SRC_SHAPE_DIRECTION_COVER_H
+
+// Internal: a cover of the first octant's unit directions by cells, each with the shape's
+// support point in its centre direction, built once per shape (Superellipsoid::directionCover).
+// The Exact solver uses it inside the shape for two things (docs/math.md → "The direction
+// cover"):
+//
+//  - a first start: the depth of Q is min over unit n of F(n) = h(n) − n·Q (h the support
+//    function), and F at a cell's centre a, a·(s(a) − Q), is an upper bound of it; the cell
+//    where it is smallest is usually where the nearest point's normal lies.
+//  - half of a certificate that a converged answer is the global one: every point s of the
+//    shape gives h(n) ≥ n·s, so over a cell of half-angle θ around a, with w = s(a) − Q at the
+//    angle φ from a, F(n) ≥ ‖w‖·cos(φ + θ). The cells where that bound stays below the
+//    answer's distance (refined three levels deep) lie within `capRadius` of its normal; the
+//    other half, ball_certificate.h's Hessian bound over the surface near the answer, covers
+//    them.
+//
+// Cells: the first octant's directions, mapped onto the three faces of the unit cube (the face
+// of the largest component), each face a k × k grid; k = 4, 8, 16 on the three levels, a cell
+// of one level the union of four of the next.
+
+#include <array>
+#include <vector>
+
+#include "fcl_superellipsoid/superellipsoid.h"
+
+namespace fcl_superellipsoid {
+namespace detail {
+
+template <typename S>
+class DirectionCover {
+ public:
+  /// The coarsest grid per cube face, and the number of levels (each halves the cells' size).
+  static constexpr int kCoarse = 4;
+  static constexpr int kLevels = 3;
+
+  /// Evaluates the shape's support point in every cell's centre direction (1,008 of them; about
+  /// 0.1 ms), each pulled toward the centre by a few ulps so that it lies inside the shape
+  /// despite rounding (the bounds need points of the shape, not near it).
+  explicit DirectionCover(const Superellipsoid<S>& shape);
+
+  /// A first-octant surface point whose normal lies near the nearest point's normal for a point
+  /// y inside the shape (first octant): the support point of the finest cell reached by
+  /// descending, level by level, into the child of smallest F(a) = a·(s(a) − y).
+  Vector3<S> startNear(const Vector3<S>& y) const;
+
+  /// For y in the first octant, a unit n_star in it and a length `need`: a chord radius θ such
+  /// that every first-octant unit direction n with F(n) = h(n) − n·y < need satisfies
+  /// ‖n − n_star‖ ≤ θ. Cells whose lower bound of F reaches `need` are skipped, the others
+  /// refined down to the finest level and counted whole. +∞ as soon as θ exceeds `limit`, and
+  /// where y or need is not finite.
+  S capRadius(const Vector3<S>& y, const Vector3<S>& n_star, S need, S limit) const;
+
+ private:
+  /// One level's cells, field by field (the loops over them vectorise). Cell p of a level has
+  /// its four children at 4p … 4p + 3 on the next; the coarsest level's cell (face, i, j) is
+  /// at (face·kCoarse + i)·kCoarse + j.
+  struct Level {
+    std::vector<S> ax, ay, az;  // unit centre direction a
+    std::vector<S> sx, sy, sz;  // support point s in direction a, a few ulps inside the shape
+    std::vector<S> h;           // a·s, so F(a) = h − a·y
+    std::vector<S> ss;          // ‖s‖², so ‖s − y‖² = ss − 2·s·y + ‖y‖²
+    std::vector<S> cos_t;       // cosine of the cell's half-angle θ about a (rounded down)
+    std::vector<S> sin2_t;      // sin²θ (rounded up)
+    std::vector<S> chord;       // ‖n − a‖ ≤ chord for every n of the cell (rounded up)
+    void resize(std::size_t n);
+  };
+
+  std::array<Level, kLevels> levels_;
+};
+
+extern template class DirectionCover<float>;
+extern template class DirectionCover<double>;
+
+}  // namespace detail
+}  // namespace fcl_superellipsoid
+
+#endif  // FCL_SUPERELLIPSOID_SRC_SHAPE_DIRECTION_COVER_H

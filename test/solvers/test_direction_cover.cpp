@@ -1,0 +1,250 @@
+// The direction cover's certificate of inside answers (src/shape/direction_cover.h and
+// hessianCapCertified in src/solvers/ball_certificate.h, docs/math.md → "The direction
+// cover"): its cap against the support function evaluated directly in long double over a dense
+// lattice of directions, the whole certificate against the long-double reference on stationary
+// points built by construction (many of them deep and not the global nearest point), and the
+// solver's answers on uniform inside points, where the cover does most of its work.
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "enumerated_depth.h"
+#include "fcl_superellipsoid/point_distance.h"
+#include "reference_distance.h"
+#include "shape/direction_cover.h"
+#include "shape/nested_norm.h"
+#include "solvers/ball_certificate.h"
+#include "test_helpers.h"
+
+namespace fcl_superellipsoid {
+namespace {
+
+const std::array<double, 5> kShapes[] = {
+    {1, 1, 1, 0.3, 0.3},    {1, 1, 1, 0.65, 0.65}, {1, 1, 1, 1.35, 1.35}, {1, 1, 1, 1.9, 1.9},
+    {1, 1, 1, 1, 1.6},      {1, 1, 1, 0.1, 1.9},   {3, 2, 1, 1, 1},       {3.5, 3, 2, 0.4, 0.3},
+    {1, 2, 0.5, 0.65, 1.2}, {4, 1, 1, 1.5, 0.8}};
+
+/// The first-octant directions of a Fibonacci lattice of n over the sphere.
+std::vector<test::V3> firstOctantDirections(int n) {
+  std::vector<test::V3> out;
+  for (const test::V3& d : test::fibonacciLattice(n)) {
+    if (d.minCoeff() >= 0) out.push_back(d);
+  }
+  return out;
+}
+
+// The claim of capRadius: every first-octant direction n where F(n) = h(n) − n·y is below
+// `need` lies within the returned chord of n_star. Checked with h evaluated directly in long
+// double (test_support's superellipsoidSupport, itself checked against surface points here)
+// over 8,000 lattice directions, for points at every depth, n_star the solver's nearest normal
+// (the claim holds for any) and `need` from the depth itself up to 0.3 × size beyond it (wider
+// caps).
+TEST(DirectionCover, CapHoldsEveryLowDirection) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const std::vector<test::V3> directions = firstOctantDirections(64000);
+  int queries = 0, low_directions = 0, finite_caps = 0;
+  for (const auto& p : kShapes) {
+    const Superellipsoid<double> shape{p[0], p[1], p[2], p[3], p[4]};
+    SCOPED_TRACE(test::describe(shape));
+    const test::V3 radii(p[0], p[1], p[2]);
+    const auto h = [&](const test::V3& n) {
+      return test::superellipsoidSupport(radii, p[3], p[4], n);
+    };
+    // The test's own support function: at least n·x for surface points, equal at the support
+    // point of n.
+    test::AngleSampler angles(3);
+    for (int k = 0; k < 50; ++k) {
+      const auto [eta, omega] = angles();
+      const Vector3<double> x = shape.surfacePoint(eta, omega);
+      const test::V3 n = shape.normal(x).cast<long double>();
+      ASSERT_NEAR(double(h(n)), double(n.dot(x.cast<long double>())), 1e-12 * shape.size());
+    }
+    std::vector<long double> h_of(directions.size());
+    for (std::size_t i = 0; i < directions.size(); ++i) h_of[i] = h(directions[i]);
+    const detail::DirectionCover<double>& cover = shape.directionCover();
+    for (int k = 0; k < 12; ++k) {
+      const Vector3<double> x = shape.radii().cwiseProduct(Vector3<double>(u(rng), u(rng), u(rng)));
+      if (!shape.contains(x)) continue;
+      const Vector3<double> y = x.cwiseAbs();
+      const PointDistanceResult<double> r = pointDistance(shape, y);
+      const Vector3<double> n_star = r.normal.cwiseAbs();
+      for (double extra : {0.0, 1e-3, 0.03, 0.3}) {
+        const double need = -r.distance + extra * shape.size();
+        const double theta = cover.capRadius(y, n_star, need, 2.0);
+        ++queries;
+        if (!std::isfinite(theta)) continue;
+        ++finite_caps;
+        for (std::size_t i = 0; i < directions.size(); ++i) {
+          const test::V3& n = directions[i];
+          const long double f = h_of[i] - n.dot(y.cast<long double>());
+          if (f >= need) continue;
+          ++low_directions;
+          const double chord = double((n - n_star.cast<long double>()).norm());
+          ASSERT_LE(chord, theta) << "y = " << y.transpose() << ", need = " << need
+                                  << ": F = " << double(f) << " at n = " << double(n[0]) << ", "
+                                  << double(n[1]) << ", " << double(n[2]);
+        }
+      }
+    }
+  }
+  EXPECT_GT(finite_caps, queries / 2);
+  EXPECT_GT(low_directions, 1000) << "the sample should hold directions inside the caps";
+}
+
+// The whole certificate on stationary points by construction: Q = N − d·n for a surface point
+// N of the first octant and its normal n, d from shallow to beyond the smallest radius (N then
+// mostly a local minimum or a saddle, not the global answer). Where the cap is found and the
+// Hessian bound over its slab holds, the sampled sphere of B(Q, d) stays inside the reference
+// gauge and the reference's distance is d; none of the stationary points that are not global
+// may be certified.
+TEST(DirectionCover, CertifiesOnlyGlobalNearestPoints) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::normal_distribution<double> g(0, 1);
+  test::AngleSampler angles(19);
+  int total = 0, certified = 0, not_global = 0, beyond_ball = 0;
+  for (const auto& p : kShapes) {
+    const Superellipsoid<double> shape{p[0], p[1], p[2], p[3], p[4]};
+    SCOPED_TRACE(test::describe(shape));
+    const test::ReferenceDistance reference({p[0], p[1], p[2]}, p[3], p[4]);
+    const auto gauge = detail::NestedNorm<double>::gauge(shape);
+    const double min_radius = std::min({p[0], p[1], p[2]});
+    for (int k = 0; k < 60; ++k) {
+      const auto [eta, omega] = angles();
+      const Vector3<double> n_point = shape.surfacePoint(eta, omega).cwiseAbs();
+      const Vector3<double> normal = shape.normal(n_point);
+      const double d = min_radius * std::pow(10.0, -2 + 2.2 * u(rng));
+      const Vector3<double> y = n_point - d * normal;
+      if ((y.array() < 0).any() || !shape.contains(y)) continue;
+      ++total;
+      const auto truth = reference.query({y[0], y[1], y[2]});
+      const bool global = double(-truth.distance) >= d - 1e-9 * shape.size();
+      if (!global) ++not_global;
+      const double theta = shape.directionCover().capRadius(y, normal, d, 0.75);
+      if (!std::isfinite(theta)) continue;
+      const Vector3<double> gradient = gauge.evaluate(n_point, false).gradient;
+      if (!detail::hessianCapCertified(gauge, n_point, normal, gradient, d, 2.01 * d * theta)) {
+        continue;
+      }
+      ++certified;
+      if (!detail::hessianBallCertified(gauge, y, n_point, gradient, d, 0.0)) ++beyond_ball;
+      long double worst = 0;
+      for (int j = 0; j < 300; ++j) {
+        const Vector3<double> on_sphere =
+            y + d * Vector3<double>(g(rng), g(rng), g(rng)).normalized();
+        worst = std::max(worst, reference.gauge({on_sphere[0], on_sphere[1], on_sphere[2]}));
+      }
+      EXPECT_LE(double(worst), 1 + 1e-12) << "Q = " << y.transpose() << ", d = " << d;
+      EXPECT_TRUE(global) << "certified a point that is not the nearest: Q = " << y.transpose()
+                          << ", N = " << n_point.transpose() << ", reference "
+                          << double(-truth.distance) << " < d = " << d;
+    }
+  }
+  std::printf("stationary points %d, not global %d, certified %d (%d not by the Hessian ball)\n",
+              total, not_global, certified, beyond_ball);
+  EXPECT_GT(not_global, 20) << "the sample should hold stationary points that are not global";
+  EXPECT_GT(certified, total / 3) << "the certificate should hold on many points";
+  EXPECT_GT(beyond_ball, 30) << "... among them points the Hessian ball does not certify";
+}
+
+// Competing faces: on box-like shapes, Q below a point N near the middle of the largest face,
+// at depths d on both sides of the distance to a nearer face. N is a local minimum with a flat
+// neighbourhood (the local Hessian bound holds), so only the cap can refuse the points where
+// the other face is nearer; every certified point must be the reference's nearest.
+TEST(DirectionCover, CompetingFacesAreNotCertified) {
+  const std::array<double, 5> shapes[] = {{1, 0.6, 0.8, 0.2, 0.2},
+                                          {1, 0.6, 0.8, 0.1, 0.3},
+                                          {2, 1, 1.5, 0.3, 0.1},
+                                          {1, 0.7, 0.9, 0.4, 0.4}};
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> u(0, 1);
+  int certified = 0, certified_global = 0, not_global = 0;
+  for (const auto& p : shapes) {
+    const Superellipsoid<double> shape{p[0], p[1], p[2], p[3], p[4]};
+    SCOPED_TRACE(test::describe(shape));
+    const test::ReferenceDistance reference({p[0], p[1], p[2]}, p[3], p[4]);
+    const auto gauge = detail::NestedNorm<double>::gauge(shape);
+    const double nearer = std::min(p[1], p[2]);  // the distance to the nearer faces' middles
+    for (int k = 0; k < 80; ++k) {
+      const Vector3<double> n_point = shape.radialProjection(
+          Vector3<double>(p[0], p[1] * (0.02 + 0.4 * u(rng)), p[2] * (0.02 + 0.4 * u(rng))));
+      const Vector3<double> normal = shape.normal(n_point);
+      const double d = nearer * (0.3 + 0.9 * u(rng));
+      const Vector3<double> y = n_point - d * normal;
+      if ((y.array() < 0).any() || !shape.contains(y)) continue;
+      const auto truth = reference.query({y[0], y[1], y[2]});
+      const bool global = double(-truth.distance) >= d - 1e-9 * shape.size();
+      if (!global) ++not_global;
+      const double theta = shape.directionCover().capRadius(y, normal, d, 0.75);
+      if (!std::isfinite(theta)) continue;
+      const Vector3<double> gradient = gauge.evaluate(n_point, false).gradient;
+      if (!detail::hessianCapCertified(gauge, n_point, normal, gradient, d, 2.01 * d * theta)) {
+        continue;
+      }
+      ++certified;
+      if (global) ++certified_global;
+      EXPECT_TRUE(global) << "certified a point that is not the nearest: Q = " << y.transpose()
+                          << ", d = " << d << ", reference " << double(-truth.distance);
+    }
+  }
+  std::printf("competing faces: %d not global, %d certified\n", not_global, certified);
+  EXPECT_GT(not_global, 40);
+  EXPECT_GT(certified_global, 40);
+}
+
+// The cover's start is a surface point of the first octant (its support points are pulled a
+// few ulps inside, no more).
+TEST(DirectionCover, StartIsASurfacePoint) {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (const auto& p : kShapes) {
+    const Superellipsoid<double> shape{p[0], p[1], p[2], p[3], p[4]};
+    SCOPED_TRACE(test::describe(shape));
+    const test::ReferenceDistance reference({p[0], p[1], p[2]}, p[3], p[4]);
+    for (int k = 0; k < 20; ++k) {
+      const Vector3<double> y =
+          shape.radii().cwiseProduct(Vector3<double>(u(rng), u(rng), u(rng))).cwiseAbs();
+      const Vector3<double> s = shape.directionCover().startNear(y);
+      ASSERT_TRUE((s.array() >= 0).all()) << s.transpose();
+      EXPECT_NEAR(double(reference.gauge({s[0], s[1], s[2]})), 1.0, 1e-13);
+    }
+  }
+}
+
+// The solver on uniform inside points (the benchmark's "uniform inside" set, where the cover
+// supplies the first start and most certificates) against the long-double reference.
+template <typename S>
+class CoverSolverTest : public ::testing::Test {};
+TYPED_TEST_SUITE_P(CoverSolverTest);
+TYPED_TEST_P(CoverSolverTest, UniformInsideAnswersAreTheGlobalMinimum) {
+  using S = TypeParam;
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const auto options = DistanceOptions<S>::of(DistanceMethod::kExact);
+  for (const auto& p : kShapes) {
+    const Superellipsoid<S> shape{S(p[0]), S(p[1]), S(p[2]), S(p[3]), S(p[4])};
+    SCOPED_TRACE(test::describe(shape));
+    const test::ReferenceDistance reference({p[0], p[1], p[2]}, p[3], p[4]);
+    const double size = shape.size(), target = test::exactTarget<S>(p[3], p[4]);
+    int checked = 0;
+    while (checked < 40) {
+      const Vector3<S> x = Vector3<S>(S(p[0] * u(rng)), S(p[1] * u(rng)), S(p[2] * u(rng)));
+      if (!shape.contains(x)) continue;
+      ++checked;
+      const auto r = pointDistance(shape, x, options);
+      const auto truth = reference.query({x[0], x[1], x[2]});
+      EXPECT_TRUE(r.converged) << "at " << x.transpose();
+      EXPECT_NEAR(double(r.distance), double(truth.distance), target * size)
+          << "at " << x.transpose();
+    }
+  }
+}
+REGISTER_TYPED_TEST_SUITE_P(CoverSolverTest, UniformInsideAnswersAreTheGlobalMinimum);
+using Scalars = ::testing::Types<float, double>;
+INSTANTIATE_TYPED_TEST_SUITE_P(FloatAndDouble, CoverSolverTest, Scalars);
+
+}  // namespace
+}  // namespace fcl_superellipsoid
