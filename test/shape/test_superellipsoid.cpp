@@ -15,6 +15,7 @@
 
 #include "fcl_superellipsoid/point_distance.h"
 #include "fcl_superellipsoid/superellipsoid.h"
+#include "shape/direction_cover.h"
 #include "test_helpers.h"
 
 namespace fcl_superellipsoid {
@@ -428,6 +429,34 @@ TYPED_TEST(SuperellipsoidTest, RollingRadiusIsComputedOnceForAllThreads) {
   for (S value : seen) EXPECT_EQ(value, expected);
   const Superellipsoid<S> copy = shape;
   EXPECT_EQ(copy.minRadiusOfCurvature(), expected);
+}
+
+// The direction cover (the Exact solver's, src/shape/direction_cover.h) is built on first use
+// and kept: threads that ask at once all get the one stored first, threads that copy the shape
+// meanwhile get a working shape, and a copy made afterwards shares it (run under
+// ThreadSanitizer by the TSan build).
+TYPED_TEST(SuperellipsoidTest, DirectionCoverIsBuiltOnceForAllThreads) {
+  using S = TypeParam;
+  const Superellipsoid<S> shape{S(3.5), S(3), S(2), S(0.4), S(0.3)};
+  const Vector3<S> y(S(0.5), S(0.4), S(0.3));
+  std::vector<const void*> seen(6);
+  std::vector<Vector3<S>> copied_start(2);
+  std::vector<std::thread> threads;
+  for (std::size_t t = 0; t < seen.size(); ++t) {
+    threads.emplace_back([&shape, &seen, t] { seen[t] = &shape.directionCover(); });
+  }
+  for (std::size_t t = 0; t < copied_start.size(); ++t) {
+    threads.emplace_back([&shape, &copied_start, &y, t] {
+      const Superellipsoid<S> copy = shape;
+      copied_start[t] = copy.directionCover().startNear(y);
+    });
+  }
+  for (std::thread& t : threads) t.join();
+  for (const void* cover : seen) EXPECT_EQ(cover, seen[0]);
+  const Superellipsoid<S> copy = shape;
+  EXPECT_EQ(static_cast<const void*>(&copy.directionCover()), seen[0]);
+  const Vector3<S> start = shape.directionCover().startNear(y);
+  for (const Vector3<S>& s : copied_start) EXPECT_EQ(s, start);
 }
 
 // The rolling-ball property by construction, against the independent long-double gauge: the

@@ -88,7 +88,7 @@ TYPED_TEST(ThreadSafetyTest, FirstConstructionRacesOnSeveralThreads) {
 
 // One shape, every method, many threads: each answer bitwise equal to the single-thread one.
 // The expected answers come from a copy, so the threads race on the shape's first computation
-// of its rolling radius.
+// of its rolling radius and of its direction cover (the inside points deeper than G = 0.9).
 TYPED_TEST(ThreadSafetyTest, ManyThreadsQueryTheSameShape) {
   using S = TypeParam;
   const Superellipsoid<S> shape(S(1.2), S(0.8), S(0.5), S(0.4), S(1.3));
