@@ -46,6 +46,7 @@
 #include <cmath>
 #include <limits>
 
+#include "shape/direction_cover.h"
 #include "shape/nested_norm.h"
 
 namespace fcl_superellipsoid {
@@ -217,6 +218,27 @@ bool hessianCapCertified(const NestedNorm<S>& gauge, const Vector3<S>& nearest,
     hi[i] = nearest[i] + lateral;
   }
   return hessianBoxCertifies(gauge, lo, hi, nearest, gradient_at_n, distance);
+}
+
+/// The direction cover's certificate (docs/math.md → "The direction cover") for a converged
+/// inside answer N (normal n, gauge gradient there) at distance d from y, all in the first
+/// octant: the ball B(Q', d) with Q' = N − d·n lies inside the shape if every direction with
+/// F(n) = h(n) − n·y < d + ‖y − Q'‖ lies within θ of n (DirectionCover::capRadius, given up
+/// beyond `cap_limit`) and the Hessian bound holds over the slab of r = 2·d·θ at N
+/// (hessianCapCertified; 2.01 covers the chord's rounding). Needs Q' in the first octant (the
+/// mirror argument); a rounding outside it is not certified.
+template <typename S>
+bool directionCoverCertified(const DirectionCover<S>& cover, const NestedNorm<S>& gauge,
+                             const Vector3<S>& y, const Vector3<S>& nearest,
+                             const Vector3<S>& normal, const Vector3<S>& gradient_at_n, S distance,
+                             S cap_limit) {
+  const Vector3<S> centre = nearest - distance * normal;
+  if (!(centre.minCoeff() >= S(0))) return false;
+  const S need = distance + (centre - y).norm();
+  const S theta = cover.capRadius(y, normal, need, cap_limit);
+  if (!(theta <= cap_limit)) return false;
+  return hessianCapCertified(gauge, nearest, normal, gradient_at_n, distance,
+                             S(2.01) * distance * theta);
 }
 
 }  // namespace detail

@@ -40,7 +40,6 @@
 #include <cmath>
 #include <utility>
 
-#include "shape/direction_cover.h"
 #include "shape/nested_norm.h"
 #include "solvers/ball_certificate.h"
 #include "solvers/exact_rules.h"
@@ -204,24 +203,13 @@ class ExactSolver {
     }
   }
 
-  /// The direction cover's certificate (docs/math.md → "The direction cover") for a converged
-  /// inside answer c at distance d from Q: the ball B(Q', d) with Q' = N − d·n lies inside the
-  /// shape if every direction n with F(n) = h(n) − n·Q < d + ‖Q − Q'‖ lies within θ of N's
-  /// normal (DirectionCover::capRadius) and the Hessian bound holds over the box of half-width
-  /// 2·d·θ about N (hessianCapCertified): a point of the ball outside the shape would have its
-  /// nearest surface point's normal within θ, and so lie within 2·d·θ of N. Needs Q' in the
-  /// first octant (the mirror argument); a rounding outside it is left to the other starts.
+  /// The direction cover's certificate (ball_certificate.h, directionCoverCertified) for a
+  /// converged inside answer c at distance d from Q, tried on at most kCoverAttempts answers.
   bool coverCertified(const Candidate<S>& c, S distance) {
     if (cover_attempts_ == rules::kCoverAttempts) return false;
     ++cover_attempts_;
-    const Vector3<S> centre = c.point - distance * c.normal;
-    if (!(centre.minCoeff() >= S(0))) return false;
-    const S need = distance + (centre - y_).norm();
-    const S theta =
-        q_.shape.directionCover().capRadius(y_, c.normal, need, S(rules::kCoverCapLimit));
-    if (!(theta <= S(rules::kCoverCapLimit))) return false;
-    return hessianCapCertified(primal_, c.point, c.normal, c.gradient, distance,
-                               S(2.01) * distance * theta);
+    return directionCoverCertified(q_.shape.directionCover(), primal_, y_, c.point, c.normal,
+                                   c.gradient, distance, S(rules::kCoverCapLimit));
   }
 
   /// Near the axis of a (nearly) round cross-section the nearest points form a (nearly)

@@ -1,5 +1,5 @@
 // The direction cover's certificate of inside answers (src/shape/direction_cover.h and
-// hessianCapCertified in src/solvers/ball_certificate.h, docs/math.md → "The direction
+// directionCoverCertified in src/solvers/ball_certificate.h, docs/math.md → "The direction
 // cover"): its cap against the support function evaluated directly in long double over a dense
 // lattice of directions, the whole certificate against the long-double reference on stationary
 // points built by construction (many of them deep and not the global nearest point), and the
@@ -16,6 +16,7 @@
 #include "shape/direction_cover.h"
 #include "shape/nested_norm.h"
 #include "solvers/ball_certificate.h"
+#include "solvers/exact_rules.h"
 #include "test_helpers.h"
 
 namespace fcl_superellipsoid {
@@ -33,6 +34,14 @@ std::vector<test::V3> firstOctantDirections(int n) {
     if (d.minCoeff() >= 0) out.push_back(d);
   }
   return out;
+}
+
+/// The solver's direction-cover certificate, with its cap limit.
+bool certifies(const Superellipsoid<double>& shape, const detail::NestedNorm<double>& gauge,
+               const Vector3<double>& y, const Vector3<double>& n_point,
+               const Vector3<double>& normal, const Vector3<double>& gradient, double d) {
+  return detail::directionCoverCertified(shape.directionCover(), gauge, y, n_point, normal,
+                                         gradient, d, detail::exact_rules::kCoverCapLimit);
 }
 
 // The claim of capRadius: every first-octant direction n where F(n) = h(n) − n·y is below
@@ -123,12 +132,8 @@ TEST(DirectionCover, CertifiesOnlyGlobalNearestPoints) {
       const auto truth = reference.query({y[0], y[1], y[2]});
       const bool global = double(-truth.distance) >= d - 1e-9 * shape.size();
       if (!global) ++not_global;
-      const double theta = shape.directionCover().capRadius(y, normal, d, 0.75);
-      if (!std::isfinite(theta)) continue;
       const Vector3<double> gradient = gauge.evaluate(n_point, false).gradient;
-      if (!detail::hessianCapCertified(gauge, n_point, normal, gradient, d, 2.01 * d * theta)) {
-        continue;
-      }
+      if (!certifies(shape, gauge, y, n_point, normal, gradient, d)) continue;
       ++certified;
       if (!detail::hessianBallCertified(gauge, y, n_point, gradient, d, 0.0)) ++beyond_ball;
       long double worst = 0;
@@ -161,7 +166,7 @@ TEST(DirectionCover, CompetingFacesAreNotCertified) {
                                           {1, 0.7, 0.9, 0.4, 0.4}};
   std::mt19937 rng(31);
   std::uniform_real_distribution<double> u(0, 1);
-  int certified = 0, certified_global = 0, not_global = 0;
+  int total = 0, certified = 0, certified_global = 0, not_global = 0;
   for (const auto& p : shapes) {
     const Superellipsoid<double> shape{p[0], p[1], p[2], p[3], p[4]};
     SCOPED_TRACE(test::describe(shape));
@@ -175,22 +180,20 @@ TEST(DirectionCover, CompetingFacesAreNotCertified) {
       const double d = nearer * (0.3 + 0.9 * u(rng));
       const Vector3<double> y = n_point - d * normal;
       if ((y.array() < 0).any() || !shape.contains(y)) continue;
+      ++total;
       const auto truth = reference.query({y[0], y[1], y[2]});
       const bool global = double(-truth.distance) >= d - 1e-9 * shape.size();
       if (!global) ++not_global;
-      const double theta = shape.directionCover().capRadius(y, normal, d, 0.75);
-      if (!std::isfinite(theta)) continue;
       const Vector3<double> gradient = gauge.evaluate(n_point, false).gradient;
-      if (!detail::hessianCapCertified(gauge, n_point, normal, gradient, d, 2.01 * d * theta)) {
-        continue;
-      }
+      if (!certifies(shape, gauge, y, n_point, normal, gradient, d)) continue;
       ++certified;
       if (global) ++certified_global;
       EXPECT_TRUE(global) << "certified a point that is not the nearest: Q = " << y.transpose()
                           << ", d = " << d << ", reference " << double(-truth.distance);
     }
   }
-  std::printf("competing faces: %d not global, %d certified\n", not_global, certified);
+  std::printf("competing faces: %d points, %d not global, %d certified\n", total, not_global,
+              certified);
   EXPECT_GT(not_global, 40);
   EXPECT_GT(certified_global, 40);
 }
