@@ -8,6 +8,7 @@
 #include <cmath>
 #include <random>
 
+#include "ball_checks.h"
 #include "fcl_superellipsoid/point_distance.h"
 #include "reference_distance.h"
 #include "shape/nested_norm.h"
@@ -139,14 +140,7 @@ TEST(HessianBall, CertifiesOnlyGlobalNearestPoints) {
       if (!detail::hessianBallCertified(gauge, y, n_point, gradient, d, 0.0)) continue;
       ++certified;
       // The claim itself: the ball B(Q, d) lies inside the shape (its sphere, sampled).
-      std::normal_distribution<double> g(0, 1);
-      long double worst = 0;
-      for (int j = 0; j < 200; ++j) {
-        Vector3<double> dir(g(rng), g(rng), g(rng));
-        dir.normalize();
-        const Vector3<double> on_sphere = y + d * dir;
-        worst = std::max(worst, reference.gauge({on_sphere[0], on_sphere[1], on_sphere[2]}));
-      }
+      const long double worst = test::worstGaugeOnSphere(reference, y, d, 200, rng);
       EXPECT_LE(double(worst), 1 + 1e-12) << "Q = " << y.transpose() << ", d = " << d;
       const auto truth = reference.query({y[0], y[1], y[2]});
       if (double(-truth.distance) < d - 1e-9 * shape.size()) ++wrong_local;
@@ -170,7 +164,6 @@ TEST(HessianBall, CertifiesOnlyGlobalNearestPoints) {
 TEST(HessianBall, CertifiesBallsThatCrossACrease) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(0, 1);
-  std::normal_distribution<double> g(0, 1);
   int crossing = 0, certified = 0, not_global = 0;
   for (const auto& p : kShapes) {
     if (p[3] <= 1 && p[4] <= 1) continue;  // no crease
@@ -199,12 +192,7 @@ TEST(HessianBall, CertifiesBallsThatCrossACrease) {
       const Vector3<double> gradient = gauge.evaluate(n_point, false).gradient;
       if (!detail::hessianBallCertified(gauge, y, n_point, gradient, d, 0.0)) continue;
       ++certified;
-      long double worst = 0;
-      for (int j = 0; j < 200; ++j) {
-        const Vector3<double> on_sphere =
-            y + d * Vector3<double>(g(rng), g(rng), g(rng)).normalized();
-        worst = std::max(worst, reference.gauge({on_sphere[0], on_sphere[1], on_sphere[2]}));
-      }
+      const long double worst = test::worstGaugeOnSphere(reference, y, d, 200, rng);
       EXPECT_LE(double(worst), 1 + 1e-12) << "Q = " << y.transpose() << ", d = " << d;
       EXPECT_TRUE(global) << "certified a point that is not the nearest: Q = " << y.transpose()
                           << ", N = " << n_point.transpose() << ", reference "

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <random>
 
+#include "ball_checks.h"
 #include "enumerated_depth.h"
 #include "fcl_superellipsoid/point_distance.h"
 #include "reference_distance.h"
@@ -112,7 +113,6 @@ TEST(DirectionCover, CapHoldsEveryLowDirection) {
 TEST(DirectionCover, CertifiesOnlyGlobalNearestPoints) {
   std::mt19937 rng(17);
   std::uniform_real_distribution<double> u(0, 1);
-  std::normal_distribution<double> g(0, 1);
   test::AngleSampler angles(19);
   int total = 0, certified = 0, not_global = 0, beyond_ball = 0;
   for (const auto& p : kShapes) {
@@ -136,12 +136,7 @@ TEST(DirectionCover, CertifiesOnlyGlobalNearestPoints) {
       if (!certifies(shape, gauge, y, n_point, normal, gradient, d)) continue;
       ++certified;
       if (!detail::hessianBallCertified(gauge, y, n_point, gradient, d, 0.0)) ++beyond_ball;
-      long double worst = 0;
-      for (int j = 0; j < 300; ++j) {
-        const Vector3<double> on_sphere =
-            y + d * Vector3<double>(g(rng), g(rng), g(rng)).normalized();
-        worst = std::max(worst, reference.gauge({on_sphere[0], on_sphere[1], on_sphere[2]}));
-      }
+      const long double worst = test::worstGaugeOnSphere(reference, y, d, 300, rng);
       EXPECT_LE(double(worst), 1 + 1e-12) << "Q = " << y.transpose() << ", d = " << d;
       EXPECT_TRUE(global) << "certified a point that is not the nearest: Q = " << y.transpose()
                           << ", N = " << n_point.transpose() << ", reference "
