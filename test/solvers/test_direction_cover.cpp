@@ -45,6 +45,21 @@ bool certifies(const Superellipsoid<double>& shape, const detail::NestedNorm<dou
                                          gradient, d, detail::exact_rules::kCoverCapLimit);
 }
 
+/// A stationary point Q = N − d·n (N on the surface, n its normal) judged twice: whether N is
+/// the reference's nearest point (its depth at Q is d), and whether the certificate says so.
+struct Verdict {
+  bool global, certified;
+  double reference_depth;
+};
+Verdict judge(const Superellipsoid<double>& shape, const test::ReferenceDistance& reference,
+              const detail::NestedNorm<double>& gauge, const Vector3<double>& y,
+              const Vector3<double>& n_point, const Vector3<double>& normal, double d) {
+  const auto truth = reference.query({y[0], y[1], y[2]});
+  const Vector3<double> gradient = gauge.evaluate(n_point, false).gradient;
+  return {double(-truth.distance) >= d - 1e-9 * shape.size(),
+          certifies(shape, gauge, y, n_point, normal, gradient, d), double(-truth.distance)};
+}
+
 // The claim of capRadius: every first-octant direction n where F(n) = h(n) − n·y is below
 // `need` lies within the returned chord of n_star. Checked with h evaluated directly in long
 // double (test_support's superellipsoidSupport, itself checked against surface points here)
@@ -129,18 +144,17 @@ TEST(DirectionCover, CertifiesOnlyGlobalNearestPoints) {
       const Vector3<double> y = n_point - d * normal;
       if ((y.array() < 0).any() || !shape.contains(y)) continue;
       ++total;
-      const auto truth = reference.query({y[0], y[1], y[2]});
-      const bool global = double(-truth.distance) >= d - 1e-9 * shape.size();
-      if (!global) ++not_global;
-      const Vector3<double> gradient = gauge.evaluate(n_point, false).gradient;
-      if (!certifies(shape, gauge, y, n_point, normal, gradient, d)) continue;
+      const Verdict verdict = judge(shape, reference, gauge, y, n_point, normal, d);
+      if (!verdict.global) ++not_global;
+      if (!verdict.certified) continue;
       ++certified;
+      const Vector3<double> gradient = gauge.evaluate(n_point, false).gradient;
       if (!detail::hessianBallCertified(gauge, y, n_point, gradient, d, 0.0)) ++beyond_ball;
       const long double worst = test::worstGaugeOnSphere(reference, y, d, 300, rng);
       EXPECT_LE(double(worst), 1 + 1e-12) << "Q = " << y.transpose() << ", d = " << d;
-      EXPECT_TRUE(global) << "certified a point that is not the nearest: Q = " << y.transpose()
-                          << ", N = " << n_point.transpose() << ", reference "
-                          << double(-truth.distance) << " < d = " << d;
+      EXPECT_TRUE(verdict.global) << "certified a point that is not the nearest: Q = "
+                                  << y.transpose() << ", N = " << n_point.transpose()
+                                  << ", reference " << verdict.reference_depth << " < d = " << d;
     }
   }
   std::printf("stationary points %d, not global %d, certified %d (%d not by the Hessian ball)\n",
@@ -176,15 +190,14 @@ TEST(DirectionCover, CompetingFacesAreNotCertified) {
       const Vector3<double> y = n_point - d * normal;
       if ((y.array() < 0).any() || !shape.contains(y)) continue;
       ++total;
-      const auto truth = reference.query({y[0], y[1], y[2]});
-      const bool global = double(-truth.distance) >= d - 1e-9 * shape.size();
+      const Verdict verdict = judge(shape, reference, gauge, y, n_point, normal, d);
+      const bool global = verdict.global;
       if (!global) ++not_global;
-      const Vector3<double> gradient = gauge.evaluate(n_point, false).gradient;
-      if (!certifies(shape, gauge, y, n_point, normal, gradient, d)) continue;
+      if (!verdict.certified) continue;
       ++certified;
       if (global) ++certified_global;
       EXPECT_TRUE(global) << "certified a point that is not the nearest: Q = " << y.transpose()
-                          << ", d = " << d << ", reference " << double(-truth.distance);
+                          << ", d = " << d << ", reference " << verdict.reference_depth;
     }
   }
   std::printf("competing faces: %d points, %d not global, %d certified\n", total, not_global,
