@@ -154,10 +154,13 @@ class ExactSolver {
              (g_y < S(rules::kCoverGauge) && coverCertified(*best, distance));
     };
     if (certified()) return;
-    // The second start: the one solve() did not take (the cover's, unless it was compared).
-    tryStart(second_start_.isZero(S(0)) ? q_.shape.directionCover().startNear(y_) : second_start_,
-             best);
-    if (certified()) return;
+    // Deeper inside, the second start is the one solve() did not take (the radial projection
+    // or the cover's guess); nearer the surface the cover's start is not tried (the axis
+    // projections below find the other basins there as often, without it).
+    if (!second_start_.isZero(S(0))) {
+      tryStart(second_start_, best);
+      if (certified()) return;
+    }
     for (const Vector3<S>& start : axisProjections()) {
       tryStart(start, best);
       if (certified()) return;
@@ -653,7 +656,7 @@ class ExactSolver {
   NestedNorm<S> primal_, dual_;
   bool primal_first_;       // which formulation refine() tries first
   int cover_attempts_ = 0;  // coverCertified's, at most exact_rules::kCoverAttempts
-  Vector3<S> second_start_ = Vector3<S>::Zero();  // inside: the start solve() did not take, if any
+  Vector3<S> second_start_ = Vector3<S>::Zero();  // deeper inside: the start solve() did not take
   bool inside_ = false;
   S sign_ = S(1);
   int iterations_ = 0;
