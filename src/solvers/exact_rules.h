@@ -118,9 +118,9 @@ constexpr double kDeepGauge = 0.5;
 
 /// Inside, a query with G(Q) below this ("deeper") uses the direction cover: its start is
 /// compared with the radial one and the nearer goes first, and its certificate is tried where
-/// the Hessian ball's fails. Above it, near the surface, the radial start goes first and the
-/// Hessian ball certifies about as often as the cover would, at a fraction of its cost (the
-/// cover's start is then the second start, its certificate not tried).
+/// the Hessian ball's fails. Above it, near the surface, the cover is not used: the radial
+/// start goes first, and the Hessian ball certifies about as often as the cover would, at a
+/// fraction of its cost.
 constexpr double kCoverGauge = 0.9;
 
 /// The direction cover's certificate gives up on a cap wider than this chord (about 44°): the
