@@ -30,7 +30,10 @@
 // shape has a local minimum on each face), so Newton also runs from the three axis
 // projections (closed form: move one coordinate until G = 1), and the nearest converged
 // answer wins; deep inside an elongated shape, also from the diagonals of the cross-sections.
-// Each start has its own share of one iteration budget.
+// Below G = 0.9 the direction cover's guess (shape/direction_cover.h) competes with the radial
+// start for first place. The search stops at the first answer a certificate proves global
+// (rolling ball, Hessian ball, direction cover: searchInside). Each start has its own share of
+// one iteration budget.
 //
 // Convergence is judged by the paper's error (Eq. 7) so all methods share one yardstick.
 
