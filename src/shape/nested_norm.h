@@ -71,26 +71,33 @@ inline PNorm2<S> pnorm2WithPowers(S a, S b, S p, S inv_p) {
   return a >= b ? PNorm2<S>{n, pow_m, pow_lo} : PNorm2<S>{n, pow_lo, pow_m};
 }
 
-/// pnorm2WithPowers with the powers as exp2(p·log2 t), given log2 of the ratio lo/m (−∞ where
-/// lo = 0); also gives log2(1 + q), if asked (log2_1pq not null), from which a second level can
-/// take its ratio's logarithm before this level's norm is known (NestedNorm::gradient).
+/// The powers (a/N)^(p−1), (b/N)^(p−1) of N = ‖(a, b)‖_p from base-2 logarithms, for
+/// NestedNorm::gradient: given which argument is the larger (a_is_max), the ratio t = lo/m of
+/// the smaller to the larger and log2 t (0 and −∞ where lo = 0). With q = t^p = exp2(p·log2 t)
+/// and L = log2(1 + q):
+///   (m/N)^(p−1) = (1 + q)^(1/p − 1) = exp2((1/p − 1)·L),   (lo/N)^(p−1) = (q/t)·(m/N)^(p−1),
+/// one exp2 after L and no division by (1 + q) on the way. L is returned too: a second level
+/// takes its ratio's logarithm from it before this level's norm is known.
 template <typename S>
-inline PNorm2<S> pnorm2WithPowersLog2(S a, S b, S p, S inv_p, S log2_ratio, S* log2_1pq) {
-  const S m = std::max(a, b);
-  if (log2_1pq != nullptr) *log2_1pq = S(0);
-  if (!(m > S(0))) return {S(0), S(0), S(0)};
-  const S lo = std::min(a, b);
-  const S q = lo > S(0) ? std::exp2(p * log2_ratio) : S(0);
+struct PowersLog2 {
+  S pow_a, pow_b;  // (a/N)^(p−1), (b/N)^(p−1)
+  S q, log2_1pq;   // t^p, log2(1 + t^p)
+};
+
+template <typename S>
+inline PowersLog2<S> pnorm2PowersLog2(bool a_is_max, S ratio, S log2_ratio, S p, S inv_p) {
+  const S q = ratio > S(0) ? std::exp2(p * log2_ratio) : S(0);
   const S log2_one_plus_q = std::log2(S(1) + q);
-  if (log2_1pq != nullptr) *log2_1pq = log2_one_plus_q;
-  const S w = std::exp2(inv_p * log2_one_plus_q);
-  const S pow_m = w / (S(1) + q);
+  const S pow_m = std::exp2((inv_p - S(1)) * log2_one_plus_q);
   S pow_lo = S(0);
-  if (lo > S(0)) {
-    const S ratio = lo / m;
+  if (ratio > S(0)) {
+    // q ≥ min implies t ≥ q (p > 1), so the quotient is a normal number in [0, 1]; below,
+    // q carries too few digits and pow() gives t^(p−1) instead (docs/hardening.md →
+    // "Findings", 4 and 10).
     pow_lo = (q >= std::numeric_limits<S>::min() ? q / ratio : std::pow(ratio, p - S(1))) * pow_m;
   }
-  return a >= b ? PNorm2<S>{m * w, pow_m, pow_lo} : PNorm2<S>{m * w, pow_lo, pow_m};
+  return a_is_max ? PowersLog2<S>{pow_m, pow_lo, q, log2_one_plus_q}
+                  : PowersLog2<S>{pow_lo, pow_m, q, log2_one_plus_q};
 }
 
 /// sgn(c)·|c|^e, the signed power of the parametric form.
@@ -131,29 +138,34 @@ struct NestedNorm {
 
   /// The gradient alone at w ≥ 0, as evaluate(w, false).gradient, for callers that wait on
   /// it (Superellipsoid::supportPoint: the halfspace and plane pairs, GJK's support). Each
-  /// level's powers are exp2(p·log2 t), and the second level's ratio is taken from logarithms,
-  /// log2 t2 = −|log2(m1/u3) + log2(1 + q1)/p1|, the first term computed beside the first
-  /// level (the SIMD kernel's idea, batch_kernel.h): a chain of short libm calls that does not
-  /// wait for the first level's norm, instead of four pow()s in a row.
+  /// level's powers are exp2 of logarithms (pnorm2PowersLog2), and the second level's ratio
+  /// is taken from logarithms, log2(r/u3) = log2(m1/u3) + log2(1 + q1)/p1 (r the first level's
+  /// norm), the first term computed beside the first level (the SIMD kernel's idea,
+  /// batch_kernel.h); its sign says which of r, u3 is the larger. So the second level's chain
+  /// of libm calls waits on neither the first level's norm nor its powers.
   /// Within a few ulps of evaluate's (docs/math.md → "Support function and the dual shape").
   Vector3<S> gradient(const Vector3<S>& w) const {
     const Vector3<S> u = w.cwiseProduct(scale);
     const S inf = std::numeric_limits<S>::infinity();
     const S m1 = std::max(u[0], u[1]), lo1 = std::min(u[0], u[1]);
+    if (!(m1 > S(0)) && !(u[2] > S(0))) return Vector3<S>::Zero();  // the origin
     // log2(m1/u3) of the quotient, not as a difference of logarithms: its error stays an ulp
     // of the result at any scale (a difference of two logarithms near −1000, on a shape of
     // radius 1e-300, would carry ulps of 1000). An over- or underflowing quotient gives ±∞,
     // and so the ratio 0 it stands for.
     const S log2_m1_u3 = m1 > S(0) && u[2] > S(0) ? std::log2(m1 / u[2]) : -inf;
-    S log2_1pq1;
-    const PNorm2<S> level1 = pnorm2WithPowersLog2(
-        u[0], u[1], p1, inv_p1, lo1 > S(0) ? std::log2(lo1 / m1) : -inf, &log2_1pq1);
-    // r/u3 = (m1/u3)·(1 + q1)^(1/p1)
-    const S log2_ratio2 =
-        level1.norm > S(0) && u[2] > S(0) ? -std::abs(log2_m1_u3 + inv_p1 * log2_1pq1) : -inf;
-    const PNorm2<S> level2 =
-        pnorm2WithPowersLog2<S>(level1.norm, u[2], p2, inv_p2, log2_ratio2, nullptr);
-    if (!(level2.norm > S(0))) return Vector3<S>::Zero();
+    const S ratio1 = m1 > S(0) ? lo1 / m1 : S(0);
+    const PowersLog2<S> level1 =
+        pnorm2PowersLog2(u[0] >= u[1], ratio1, lo1 > S(0) ? std::log2(ratio1) : -inf, p1, inv_p1);
+    // log2(r/u3) = log2(m1/u3) + log2(1 + q1)/p1; r = 0 or u3 = 0 make the ratio 0.
+    const S log2_r_u3 = log2_m1_u3 + inv_p1 * level1.log2_1pq;
+    const bool r_is_max = !(u[2] > S(0)) || (m1 > S(0) && log2_r_u3 >= S(0));
+    // r = m1·(1 + q1)^(1/p1) = m1·(m1/r)^(p1−1)·(1 + q1), from the first level's powers, for
+    // the second level's ratio itself (only its last step waits on it).
+    const S r = m1 * std::max(level1.pow_a, level1.pow_b) * (S(1) + level1.q);
+    const S ratio2 = !(m1 > S(0)) || !(u[2] > S(0)) ? S(0) : r_is_max ? u[2] / r : r / u[2];
+    const PowersLog2<S> level2 =
+        pnorm2PowersLog2(r_is_max, ratio2, ratio2 > S(0) ? -std::abs(log2_r_u3) : -inf, p2, inv_p2);
     return Vector3<S>(level2.pow_a * level1.pow_a, level2.pow_a * level1.pow_b, level2.pow_b)
         .cwiseProduct(scale);
   }
