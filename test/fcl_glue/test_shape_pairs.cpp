@@ -473,6 +473,28 @@ TEST(ShapePairs, DegenerateConfigurations) {
       if (d != 0) EXPECT_EQ(r.contacts, d < 0 ? 1u : 0u) << "d = " << d;
     }
   }
+  // The same top against polytopes whose faces are degenerate or flat, so that they do not take
+  // the topology a box or triangle shares (polytope_pair.cpp, finishShared) but build their own:
+  // a square (a box of height 0), a box 1e-12 thin (its two large faces flat within the
+  // tolerance), and a triangle whose corners lie on one line (edges only). Each lies in the
+  // plane z = 0.5 + d, over the shape's flat top.
+  {
+    const auto shape = std::make_shared<Superellipsoidd>(1.0, 0.7, 0.5, 0.1, 0.1);
+    const std::vector<std::pair<const char*, std::shared_ptr<fcl::CollisionGeometryd>>> flat = {
+        {"square", std::make_shared<fcl::Boxd>(0.4, 0.4, 0.0)},
+        {"thin box", std::make_shared<fcl::Boxd>(0.4, 0.4, 1e-12)},
+        {"collinear triangle", std::make_shared<fcl::TrianglePd>(Vector3<double>(-0.2, 0, 0),
+                                                                 Vector3<double>(0.2, 0, 0),
+                                                                 Vector3<double>(0.05, 0, 0))}};
+    for (const auto& [name, geometry] : flat) {
+      for (double d : {0.25, 1e-6, -0.05}) {
+        const fcl::Transform3d X_WB(fcl::Translation3d(0.1, -0.2, 0.5 + d));
+        const Answer r = ask<double>(shape, fcl::Transform3d::Identity(), geometry, X_WB, 1e-12);
+        EXPECT_NEAR(r.distance, d, d < 0 ? 1e-6 : 1e-12) << name << ", d = " << d;
+        EXPECT_EQ(r.contacts, d < 0 ? 1u : 0u) << name << ", d = " << d;
+      }
+    }
+  }
   // Far apart: 1e6 × size, every kind of partner; the distance to its rounding.
   {
     const auto shape = std::make_shared<Superellipsoidd>(1.0, 0.7, 0.5, 0.6, 1.3);

@@ -37,16 +37,29 @@ struct EdgeArc {
   S angle;
 };
 
-/// A polytope in world coordinates: vertices, faces as vertex loops with outward normals, and
-/// the edges of those loops.
+/// A polytope's combinatorics: faces as vertex loops (on a flat polytope the second half are the
+/// first half's other sides), the edges of those loops with the faces they border, and whether
+/// it is flat. A box's and a triangle's depend on nothing but which faces are degenerate or flat,
+/// so the common case is built once and shared (sharedTopology) instead of per query.
+struct Topology {
+  std::vector<std::vector<int>> faces;
+  std::vector<Edge> edges;
+  bool flat = false;  // a polygon (a triangle): its faces are the two sides of one loop
+};
+
+/// A polytope in world coordinates: vertices, the faces' outward normals, and its topology.
 template <typename S>
 struct Polytope {
   std::vector<Vector3<S>> vertices;
-  std::vector<std::vector<int>> faces;
-  std::vector<Vector3<S>> normals;  // outward, unit
-  std::vector<Edge> edges;
-  S extent = S(0);    // largest distance between the centroid and a vertex
-  bool flat = false;  // a polygon (a triangle): its faces are the two sides of one loop
+  std::vector<Vector3<S>> normals;   // outward, unit, one per face
+  const Topology* shared = nullptr;  // the shared topology it has, or null for
+  Topology own;                      // its own
+  S extent = S(0);                   // largest distance between the centroid and a vertex
+
+  const Topology& topology() const { return shared != nullptr ? *shared : own; }
+  const std::vector<std::vector<int>>& faces() const { return topology().faces; }
+  const std::vector<Edge>& edges() const { return topology().edges; }
+  bool flat() const { return topology().flat; }
 
   /// The support function h(u) = max over the vertices of u·w.
   S support(const Vector3<S>& u) const {
@@ -57,12 +70,13 @@ struct Polytope {
   /// How far x lies beyond the face planes (≤ 0 inside); for a flat polytope, beyond its plane
   /// or, in the plane, beyond its loop's edges.
   S outside(const Vector3<S>& x) const {
+    const std::vector<std::vector<int>>& loops = faces();
     S beyond = -std::numeric_limits<S>::infinity();
-    for (std::size_t f = 0; f < faces.size(); ++f) {
-      beyond = std::max(beyond, normals[f].dot(x - vertices[faces[f][0]]));
+    for (std::size_t f = 0; f < loops.size(); ++f) {
+      beyond = std::max(beyond, normals[f].dot(x - vertices[loops[f][0]]));
     }
-    if (flat && !faces.empty()) {
-      const std::vector<int>& loop = faces[0];
+    if (flat() && !loops.empty()) {
+      const std::vector<int>& loop = loops[0];
       const Vector3<S>& n = normals[0];
       for (std::size_t k = 0; k < loop.size(); ++k) {
         const Vector3<S>& a = vertices[loop[k]];
@@ -98,56 +112,132 @@ Vector3<S> loopNormal(const std::vector<Vector3<S>>& v, const std::vector<int>& 
   return n;
 }
 
-/// Fills normals (outward: away from the centroid; both sides for a flat polytope), edges and
-/// extent from vertices and faces.
+/// The centroid of p's vertices; sets p.extent.
 template <typename S>
-void finish(Polytope<S>& p) {
+Vector3<S> centroidAndExtent(Polytope<S>& p) {
   Vector3<S> centroid = Vector3<S>::Zero();
   for (const Vector3<S>& v : p.vertices) centroid += v;
   centroid /= S(p.vertices.size());
+  p.extent = S(0);
   for (const Vector3<S>& v : p.vertices) p.extent = std::max(p.extent, (v - centroid).norm());
+  return centroid;
+}
+
+/// A face's unit normal: none for a degenerate loop; outward (away from the centroid), or, for
+/// a flat face (the loop passes through the centroid), as the loop's orientation gives it.
+template <typename S>
+struct FaceNormal {
+  bool degenerate = true;
+  bool flat = false;
+  Vector3<S> n = Vector3<S>::Zero();
+};
+
+template <typename S>
+FaceNormal<S> faceNormal(const Polytope<S>& p, const std::vector<int>& loop,
+                         const Vector3<S>& centroid) {
+  const Vector3<S> newell = loopNormal(p.vertices, loop);
+  if (!(newell.norm() > S(0)) || !newell.allFinite()) return {};
+  const Vector3<S> n = newell.normalized();
+  const S side = n.dot(p.vertices[loop[0]] - centroid);
+  // Flat (a triangle): the face is both sides. The rounding of `side` is a few ulps of the
+  // extent: in float, 1e-9 × extent alone took a triangle for a solid with one side.
+  const S flat = std::max(S(1e-9), S(64) * std::numeric_limits<S>::epsilon()) * p.extent;
+  if (std::abs(side) <= flat) return {false, true, n};
+  return {false, false, side > 0 ? n : Vector3<S>(-n)};
+}
+
+/// Builds p's own topology from its faces' loops (a degenerate face leaves its edges only; a
+/// flat face gets its other side too), with the normals and extent.
+template <typename S>
+void finish(Polytope<S>& p, const std::vector<std::vector<int>>& loops) {
+  const Vector3<S> centroid = centroidAndExtent(p);
+  Topology& t = p.own;
+  p.shared = nullptr;
+  p.normals.clear();
   std::vector<std::pair<int, int>> edges;    // each face's, then sorted and made unique
   std::vector<std::vector<int>> back_faces;  // the other side of a flat polytope's faces
   std::vector<Vector3<S>> back_normals;
-  std::vector<std::vector<int>> faces;
-  for (const std::vector<int>& loop : p.faces) {
+  for (const std::vector<int>& loop : loops) {
     for (std::size_t k = 0; k < loop.size(); ++k) {
       const int i = loop[k], j = loop[(k + 1) % loop.size()];
       edges.push_back({std::min(i, j), std::max(i, j)});
     }
-    const Vector3<S> newell = loopNormal(p.vertices, loop);
-    if (!(newell.norm() > S(0)) || !newell.allFinite()) continue;  // a degenerate face: edges only
-    faces.push_back(loop);
-    const Vector3<S> n = newell.normalized();
-    const S side = n.dot(p.vertices[loop[0]] - centroid);
-    // Flat (a triangle): the face is both sides. The rounding of `side` is a few ulps of the
-    // extent: in float, 1e-9 × extent alone took a triangle for a solid with one side.
-    const S flat = std::max(S(1e-9), S(64) * std::numeric_limits<S>::epsilon()) * p.extent;
-    if (std::abs(side) <= flat) {
-      p.flat = true;
-      p.normals.push_back(n);
+    const FaceNormal<S> face = faceNormal(p, loop, centroid);
+    if (face.degenerate) continue;  // edges only
+    t.faces.push_back(loop);
+    p.normals.push_back(face.n);
+    if (face.flat) {
+      t.flat = true;
       back_faces.push_back(loop);
-      back_normals.push_back(-n);
-    } else {
-      p.normals.push_back(side > 0 ? n : Vector3<S>(-n));
+      back_normals.push_back(-face.n);
     }
   }
-  p.faces = std::move(faces);
-  p.faces.insert(p.faces.end(), back_faces.begin(), back_faces.end());
+  t.faces.insert(t.faces.end(), back_faces.begin(), back_faces.end());
   p.normals.insert(p.normals.end(), back_normals.begin(), back_normals.end());
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  for (const auto& [i, j] : edges) p.edges.push_back(Edge{i, j});
-  for (std::size_t f = 0; f < p.faces.size(); ++f) {
-    const std::vector<int>& loop = p.faces[f];
+  for (const auto& [i, j] : edges) t.edges.push_back(Edge{i, j});
+  for (std::size_t f = 0; f < t.faces.size(); ++f) {
+    const std::vector<int>& loop = t.faces[f];
     for (std::size_t k = 0; k < loop.size(); ++k) {
       const std::pair<int, int> e{std::min(loop[k], loop[(k + 1) % loop.size()]),
                                   std::max(loop[k], loop[(k + 1) % loop.size()])};
-      Edge& edge = p.edges[std::lower_bound(edges.begin(), edges.end(), e) - edges.begin()];
+      Edge& edge = t.edges[std::lower_bound(edges.begin(), edges.end(), e) - edges.begin()];
       if (edge.face_count < 2) edge.faces[edge.face_count] = int(f);
       ++edge.face_count;
     }
   }
+}
+
+/// A box's loops (vertex i is (±h0, ±h1, ±h2), bit k of i the sign of h_k) and a triangle's.
+/// (Function-local statics, like the topologies below: ready whenever the first query comes,
+/// even from another library's static initialisation.)
+const std::vector<std::vector<int>>& loopsOf(bool box) {
+  static const std::vector<std::vector<int>> box_loops = {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                                          {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}};
+  static const std::vector<std::vector<int>> triangle_loops = {{0, 1, 2}};
+  return box ? box_loops : triangle_loops;
+}
+
+/// The topology finish() gives a box's or a triangle's loops where no face is degenerate and,
+/// for a box, none is flat: built once, on a unit cube and a unit triangle.
+const Topology& sharedTopology(bool box) {
+  auto build = [](std::vector<Vector3<double>> vertices,
+                  const std::vector<std::vector<int>>& loops) {
+    Polytope<double> p;
+    p.vertices = std::move(vertices);
+    finish(p, loops);
+    return p.own;
+  };
+  static const Topology cube = [&] {
+    std::vector<Vector3<double>> v;
+    for (int i = 0; i < 8; ++i)
+      v.emplace_back((i & 1) ? 1 : -1, (i & 2) ? 1 : -1, (i & 4) ? 1 : -1);
+    return build(v, loopsOf(true));
+  }();
+  static const Topology triangle =
+      build({Vector3<double>(0, 0, 0), Vector3<double>(1, 0, 0), Vector3<double>(0, 1, 0)},
+            loopsOf(false));
+  return box ? cube : triangle;
+}
+
+/// Normals and extent for p with the shared topology t built from the same loops: the same
+/// arithmetic as finish(), so the same polytope. False where t does not fit p (a face of p is
+/// degenerate, or flat where t's are not or the reverse); then finish() builds p's own.
+template <typename S>
+bool finishShared(Polytope<S>& p, const Topology& t, const std::vector<std::vector<int>>& loops) {
+  const Vector3<S> centroid = centroidAndExtent(p);
+  p.normals.clear();
+  for (const std::vector<int>& loop : loops) {
+    const FaceNormal<S> face = faceNormal(p, loop, centroid);
+    if (face.degenerate || face.flat != t.flat) return false;
+    p.normals.push_back(face.n);
+  }
+  if (t.flat) {
+    for (std::size_t f = 0; f < loops.size(); ++f) p.normals.push_back(-p.normals[f]);
+  }
+  p.shared = &t;
+  return true;
 }
 
 /// The normal cone of an edge of exactly two faces (the overlap's edge search; not needed when
@@ -175,27 +265,29 @@ std::optional<Polytope<S>> polytopeOf(const Pair<S>& pair) {
   Polytope<S> p;
   if (const auto* box = otherAs<fcl::Box<S>>(pair, fcl::GEOM_BOX)) {
     const Vector3<S> h = box->side / 2;
+    p.vertices.reserve(8);
     for (int i = 0; i < 8; ++i) {
       p.vertices.push_back(
           X * Vector3<S>((i & 1) ? h[0] : -h[0], (i & 2) ? h[1] : -h[1], (i & 4) ? h[2] : -h[2]));
     }
-    p.faces = {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}};
+    if (!finishShared(p, sharedTopology(true), loopsOf(true))) finish(p, loopsOf(true));
   } else if (const auto* convex = otherAs<fcl::Convex<S>>(pair, fcl::GEOM_CONVEX)) {
     for (const Vector3<S>& v : convex->getVertices()) p.vertices.push_back(X * v);
     const std::vector<int>& list = convex->getFaces();
+    std::vector<std::vector<int>> loops;
     for (std::size_t k = 0, f = 0;
          f < static_cast<std::size_t>(convex->getFaceCount()) && k < list.size(); ++f) {
       const int n = list[k];
-      p.faces.emplace_back(list.begin() + k + 1, list.begin() + k + 1 + n);
+      loops.emplace_back(list.begin() + k + 1, list.begin() + k + 1 + n);
       k += n + 1;
     }
+    finish(p, loops);
   } else if (const auto* t = otherAs<fcl::TriangleP<S>>(pair, fcl::GEOM_TRIANGLE)) {
     p.vertices = {X * t->a, X * t->b, X * t->c};
-    p.faces = {{0, 1, 2}};
+    if (!finishShared(p, sharedTopology(false), loopsOf(false))) finish(p, loopsOf(false));
   } else {
     return std::nullopt;
   }
-  finish(p);
   return p;
 }
 
@@ -226,8 +318,8 @@ std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Polytope<S>&
   auto support = [&p](const Vector3<S>& u) { return p.support(u); };
   Candidates<S, decltype(support)> candidates(pair, support, p.extent);
   // Faces: every vertex of the loop near the support.
-  for (std::size_t f = 0; f < p.faces.size(); ++f) {
-    const std::vector<int>& loop = p.faces[f];
+  for (std::size_t f = 0; f < p.faces().size(); ++f) {
+    const std::vector<int>& loop = p.faces()[f];
     if (!std::all_of(loop.begin(), loop.end(), [&](int i) { return near[i]; })) continue;
     const Vector3<S>& n = p.normals[f];
     const Vector3<S> a = shapeSupport(pair, Vector3<S>(-n));
@@ -237,7 +329,7 @@ std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Polytope<S>&
       return candidates.certified();
   }
   // Edges with both ends near.
-  for (const Edge& edge : p.edges) {
+  for (const Edge& edge : p.edges()) {
     if (!near[edge.i] || !near[edge.j]) continue;
     const SegmentMinimum<S> m =
         nearestOnSegment(*pair.shape, *pair.X_WS, p.vertices[edge.i], p.vertices[edge.j]);
@@ -298,7 +390,7 @@ PairHit<S> overlap(const Pair<S>& pair, const Polytope<S>& p, const PairHit<S>& 
     }
   }
   if (depth.certified(outside, tolerance)) return depth.best();
-  for (const Edge& e : p.edges) {
+  for (const Edge& e : p.edges()) {
     if (const std::optional<EdgeArc<S>> arc = arcOf(p, e, centroid)) {
       depth.offerEdgeArc(p.vertices[e.i], arc->c1, arc->c2, arc->angle);
     } else {
