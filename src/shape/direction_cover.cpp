@@ -1,9 +1,11 @@
 #include "shape/direction_cover.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 
 namespace fcl_superellipsoid {
 namespace detail {
@@ -127,26 +129,33 @@ S DirectionCover<S>::capRadius(const Vector3<S>& y, const Vector3<S>& n_star, S 
     const S across_squared = std::max(S(0), l.ss[p] - S(2) * sy + yy - along * along);
     return margin >= S(0) && margin * margin >= across_squared * l.sin2_t[p];
   };
-  // Level by level: the failing cells of one level, then their children on the next.
-  std::vector<std::uint16_t> failing, next;
-  failing.reserve(64);
-  next.reserve(64);
+  // Level by level: the failing cells of one level, then their children on the next. The lists
+  // live on the stack (at most the finest level's 768 cells): two heap lists per call cost the
+  // uniform inside queries 2–4 % of their time.
+  constexpr std::size_t kFinestCells = 3 * kCoarse * kCoarse << (2 * (kLevels - 1));
+  std::array<std::uint16_t, kFinestCells> lists[2];
+  std::uint16_t* failing = lists[0].data();
+  std::uint16_t* next = lists[1].data();
+  std::size_t failing_count = 0;
   for (std::size_t p = 0; p < levels_[0].h.size(); ++p) {
-    if (!passes(levels_[0], p)) failing.push_back(static_cast<std::uint16_t>(p));
+    if (!passes(levels_[0], p)) failing[failing_count++] = static_cast<std::uint16_t>(p);
   }
   for (int level = 1; level < kLevels; ++level) {
-    next.clear();
+    std::size_t next_count = 0;
     const Level& cells = levels_[level];
-    for (const std::uint16_t parent : failing) {
-      for (std::size_t p = 4 * std::size_t(parent); p < 4 * std::size_t(parent) + 4; ++p) {
-        if (!passes(cells, p)) next.push_back(static_cast<std::uint16_t>(p));
+    for (std::size_t k = 0; k < failing_count; ++k) {
+      const std::size_t first = 4 * std::size_t(failing[k]);
+      for (std::size_t p = first; p < first + 4; ++p) {
+        if (!passes(cells, p)) next[next_count++] = static_cast<std::uint16_t>(p);
       }
     }
-    failing.swap(next);
+    std::swap(failing, next);
+    failing_count = next_count;
   }
   const Level& finest = levels_[kLevels - 1];
   S radius = S(0);
-  for (const std::uint16_t p : failing) {
+  for (std::size_t k = 0; k < failing_count; ++k) {
+    const std::size_t p = failing[k];
     const Vector3<S> a(finest.ax[p], finest.ay[p], finest.az[p]);
     radius = std::max(radius, (a - n_star).norm() + finest.chord[p]);
     if (radius > limit) return beyond;
