@@ -5,7 +5,9 @@
 // data race is a failure even when the answers happen to agree.
 
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
+#include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/sphere.h>
+#include <fcl/geometry/shape/triangle_p.h>
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -164,6 +166,47 @@ TYPED_TEST(ThreadSafetyTest, ManyThreadsQueryTheSameFclObjects) {
     return out;
   };
   expectEveryThreadGets(answers(), answers);
+}
+
+// A box's and a triangle's faces and edges are built once per process and shared by every
+// query (src/fcl_glue/pairs/polytope_pair.cpp, sharedTopology). Under ctest each test runs in
+// its own process, so the threads here race on building them: every thread's answers (distance,
+// nearest points, contacts; separated and overlapping) equal those of the same queries made
+// after, on one thread.
+TYPED_TEST(ThreadSafetyTest, PolytopePairsRaceOnTheirSharedTopology) {
+  using S = TypeParam;
+  const auto shape = std::make_shared<Superellipsoid<S>>(S(1), S(0.8), S(0.6), S(0.5), S(1.2));
+  const auto box = std::make_shared<fcl::Box<S>>(S(0.4), S(0.6), S(0.3));
+  const auto triangle = std::make_shared<fcl::TriangleP<S>>(Vector3<S>(S(0), S(0), S(0)),
+                                                            Vector3<S>(S(0.5), S(0), S(0)),
+                                                            Vector3<S>(S(0), S(0.4), S(0.1)));
+  auto answers = [&] {
+    std::vector<S> out;
+    for (const std::shared_ptr<fcl::CollisionGeometry<S>>& other :
+         {std::static_pointer_cast<fcl::CollisionGeometry<S>>(box),
+          std::static_pointer_cast<fcl::CollisionGeometry<S>>(triangle)}) {
+      for (S x : {S(1.5), S(1.25), S(0.9)}) {  // apart, near, overlapping
+        const fcl::Transform3<S> X_WO(fcl::Translation3<S>(x, S(0.1), S(-0.05)));
+        fcl::DistanceResult<S> d;
+        fcl_superellipsoid::distance(shape.get(), fcl::Transform3<S>::Identity(), other.get(), X_WO,
+                                     fcl::DistanceRequest<S>(true, true), d);
+        fcl::CollisionResult<S> c;
+        fcl_superellipsoid::collide(shape.get(), fcl::Transform3<S>::Identity(), other.get(), X_WO,
+                                    fcl::CollisionRequest<S>(1, true), c);
+        out.insert(out.end(), {d.min_distance, d.nearest_points[0][0], d.nearest_points[1][0],
+                               S(c.numContacts())});
+      }
+    }
+    return out;
+  };
+  std::vector<std::vector<S>> got(kThreads);
+  onThreadsAtOnce([&](int t) { got[t] = answers(); });
+  const std::vector<S> after = answers();
+  ASSERT_EQ(after.size(), 24u);
+  EXPECT_GT(after[0], S(0));   // the box apart
+  EXPECT_LT(after[8], S(0));   // and overlapping
+  EXPECT_EQ(after[11], S(1));  // with one contact
+  for (int t = 0; t < kThreads; ++t) EXPECT_EQ(got[t], after) << "thread " << t;
 }
 
 // A broadphase manager set up once and queried (self-collision, distance to an object) from
