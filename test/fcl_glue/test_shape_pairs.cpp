@@ -462,36 +462,33 @@ TEST(ShapePairs, DegenerateConfigurations) {
     EXPECT_EQ(r.contacts, 1u);
   }
   // A box's face on the flat top of a box-like superellipsoid (ε = 0.1), both faces parallel:
-  // the witnesses are not unique on the box, the distance is.
+  // the witnesses are not unique on the box, the distance is. The same top against polytopes
+  // whose faces are degenerate or flat, so that they do not take the topology a box or triangle
+  // shares (polytope_pair.cpp, finishShared) but build their own: a square (a box of height 0),
+  // a box 1e-12 thin (its two large faces flat within the tolerance), and a triangle whose
+  // corners lie on one line (edges only). Each one's lowest face or edge lies in z = 0.5 + d.
   {
     const auto shape = std::make_shared<Superellipsoidd>(1.0, 0.7, 0.5, 0.1, 0.1);
-    const auto box = std::make_shared<fcl::Boxd>(0.4, 0.4, 0.2);
-    for (double d : {0.25, 1e-6, 0.0, -0.05}) {
-      const fcl::Transform3d X_WB(fcl::Translation3d(0.1, -0.2, 0.5 + 0.1 + d));
-      const Answer r = ask<double>(shape, fcl::Transform3d::Identity(), box, X_WB, 1e-12, d == 0);
-      EXPECT_NEAR(r.distance, d, d < 0 ? 1e-6 : 1e-12) << "d = " << d;
-      if (d != 0) EXPECT_EQ(r.contacts, d < 0 ? 1u : 0u) << "d = " << d;
-    }
-  }
-  // The same top against polytopes whose faces are degenerate or flat, so that they do not take
-  // the topology a box or triangle shares (polytope_pair.cpp, finishShared) but build their own:
-  // a square (a box of height 0), a box 1e-12 thin (its two large faces flat within the
-  // tolerance), and a triangle whose corners lie on one line (edges only). Each lies in the
-  // plane z = 0.5 + d, over the shape's flat top.
-  {
-    const auto shape = std::make_shared<Superellipsoidd>(1.0, 0.7, 0.5, 0.1, 0.1);
-    const std::vector<std::pair<const char*, std::shared_ptr<fcl::CollisionGeometryd>>> flat = {
-        {"square", std::make_shared<fcl::Boxd>(0.4, 0.4, 0.0)},
-        {"thin box", std::make_shared<fcl::Boxd>(0.4, 0.4, 1e-12)},
-        {"collinear triangle", std::make_shared<fcl::TrianglePd>(Vector3<double>(-0.2, 0, 0),
-                                                                 Vector3<double>(0.2, 0, 0),
-                                                                 Vector3<double>(0.05, 0, 0))}};
-    for (const auto& [name, geometry] : flat) {
-      for (double d : {0.25, 1e-6, -0.05}) {
-        const fcl::Transform3d X_WB(fcl::Translation3d(0.1, -0.2, 0.5 + d));
-        const Answer r = ask<double>(shape, fcl::Transform3d::Identity(), geometry, X_WB, 1e-12);
-        EXPECT_NEAR(r.distance, d, d < 0 ? 1e-6 : 1e-12) << name << ", d = " << d;
-        EXPECT_EQ(r.contacts, d < 0 ? 1u : 0u) << name << ", d = " << d;
+    struct Partner {
+      const char* name;
+      std::shared_ptr<fcl::CollisionGeometryd> geometry;
+      double half_height;  // of its centre above its lowest face (0 for the flat ones)
+    };
+    const std::vector<Partner> partners = {
+        {"box", std::make_shared<fcl::Boxd>(0.4, 0.4, 0.2), 0.1},
+        {"square", std::make_shared<fcl::Boxd>(0.4, 0.4, 0.0), 0.0},
+        {"thin box", std::make_shared<fcl::Boxd>(0.4, 0.4, 1e-12), 0.0},
+        {"collinear triangle",
+         std::make_shared<fcl::TrianglePd>(Vector3<double>(-0.2, 0, 0), Vector3<double>(0.2, 0, 0),
+                                           Vector3<double>(0.05, 0, 0)),
+         0.0}};
+    for (const Partner& partner : partners) {
+      for (double d : {0.25, 1e-6, 0.0, -0.05}) {
+        const fcl::Transform3d X_WB(fcl::Translation3d(0.1, -0.2, 0.5 + partner.half_height + d));
+        const Answer r =
+            ask<double>(shape, fcl::Transform3d::Identity(), partner.geometry, X_WB, 1e-12, d == 0);
+        EXPECT_NEAR(r.distance, d, d < 0 ? 1e-6 : 1e-12) << partner.name << ", d = " << d;
+        if (d != 0) EXPECT_EQ(r.contacts, d < 0 ? 1u : 0u) << partner.name << ", d = " << d;
       }
     }
   }
