@@ -102,7 +102,8 @@ HWY_INLINE hn::Vec<D> Pow(D d, hn::Vec<D> x, hn::Vec<D> p) {
   return hn::IfThenElseZero(positive, hn::Exp(d, hn::Mul(p, hn::Log(d, safe))));
 }
 
-/// ‖(a, b)‖_p and its gradient's powers (a/N)^(p−1), (b/N)^(p−1): pnorm2WithPowers, lane-wise;
+/// ‖(a, b)‖_p and its gradient's powers (a/N)^(p−1), (b/N)^(p−1), lane-wise (NestedNorm::levels
+/// takes them from exp2 and log2 in the same way);
 /// also log(1 + q), q = (lo/m)^p, from which the nested norm's second level takes its ratio.
 template <class D>
 struct PNorm2Lanes {

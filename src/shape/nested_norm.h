@@ -36,47 +36,14 @@ inline S pnorm2(S a, S b, S p, S inv_p) {
   return m * std::pow(S(1) + std::pow(lo / m, p), inv_p);
 }
 
-/// ‖(a, b)‖_p with the gradient's powers (a/N)^(p−1), (b/N)^(p−1), for a, b ≥ 0 and p > 1.
-/// The powers come from the norm's own q = (lo/m)^p without another pow(): with
-/// w = (1 + q)^(1/p), so that N = m·w,
-///   (m/N)^p = 1/(1 + q)   ⇒  (m/N)^(p−1) = w/(1 + q),
-///   (lo/N)^(p−1) = (lo/m)^(p−1)·(m/N)^(p−1),  with (lo/m)^(p−1) = q/(lo/m).
-/// Only ratios in [0, 1] and w are formed, never N itself: the product q·N once underflowed
-/// for a tiny shape (radii 4e-25) and a direction with a tiny component, losing every digit of
-/// the power, and N/(m·(1 + q)) once lost all but a few digits where m, and so N, were
-/// subnormal (fuzzing found both; docs/hardening.md → "Findings", 4 and 10). Where q is
-/// subnormal or underflows (lo/m tiny, p large) it carries too few digits, and pow() gives
-/// (lo/m)^(p−1) instead. (The SIMD kernel, batch/batch_kernel.cpp, forms the powers the same
-/// way.)
-template <typename S>
-struct PNorm2 {
-  S norm, pow_a, pow_b;  // N, (a/N)^(p−1), (b/N)^(p−1)
-};
-
-template <typename S>
-inline PNorm2<S> pnorm2WithPowers(S a, S b, S p, S inv_p) {
-  const S m = std::max(a, b);
-  if (m == S(0)) return {S(0), S(0), S(0)};
-  const S lo = std::min(a, b);
-  const S ratio = lo / m;  // in [0, 1]
-  const S q = std::pow(ratio, p);
-  const S w = std::pow(S(1) + q, inv_p);
-  const S n = m * w;
-  const S pow_m = w / (S(1) + q);
-  S pow_lo = S(0);
-  if (lo > S(0)) {
-    // q ≥ min implies lo/m ≥ q (p > 1), so the quotient is a normal number in [0, 1].
-    pow_lo = (q >= std::numeric_limits<S>::min() ? q / ratio : std::pow(ratio, p - S(1))) * pow_m;
-  }
-  return a >= b ? PNorm2<S>{n, pow_m, pow_lo} : PNorm2<S>{n, pow_lo, pow_m};
-}
-
 /// The powers (a/N)^(p−1), (b/N)^(p−1) of N = ‖(a, b)‖_p from base-2 logarithms, for
-/// NestedNorm::gradient: given which argument is the larger (a_is_max), the ratio t = lo/m of
+/// NestedNorm::levels: given which argument is the larger (a_is_max), the ratio t = lo/m of
 /// the smaller to the larger and log2 t (0 and −∞ where lo = 0). With q = t^p = exp2(p·log2 t)
 /// and L = log2(1 + q):
 ///   (m/N)^(p−1) = (1 + q)^(1/p − 1) = exp2((1/p − 1)·L),   (lo/N)^(p−1) = (q/t)·(m/N)^(p−1),
-/// one exp2 after L and no division by (1 + q) on the way. L is returned too: a second level
+/// one exp2 after L and no division by (1 + q) on the way; N itself is m·(1 + q)·(m/N)^(p−1).
+/// Only ratios in [0, 1] are raised to powers, never N (a product q·N once underflowed for a
+/// tiny shape: docs/hardening.md → "Findings", 4 and 10). L is returned too: a second level
 /// takes its ratio's logarithm from it before this level's norm is known.
 template <typename S>
 struct PowersLog2 {
@@ -136,19 +103,22 @@ struct NestedNorm {
     return pnorm2(pnorm2(u[0], u[1], p1, inv_p1), u[2], p2, inv_p2);
   }
 
-  /// The gradient alone at w ≥ 0, as evaluate(w, false).gradient, for callers that wait on
-  /// it (Superellipsoid::supportPoint: the halfspace and plane pairs, GJK's support). Each
-  /// level's powers are exp2 of logarithms (pnorm2PowersLog2), and the second level's ratio
-  /// is taken from logarithms, log2(r/u3) = log2(m1/u3) + log2(1 + q1)/p1 (r the first level's
+  /// The powers of both levels at u = w ⊙ scale ≥ 0, u ≠ 0, from base-2 logarithms: each
+  /// level's powers are exp2 of logarithms (pnorm2PowersLog2), and the second level's ratio is
+  /// taken from logarithms, log2(r/u3) = log2(m1/u3) + log2(1 + q1)/p1 (r the first level's
   /// norm), the first term computed beside the first level (the SIMD kernel's idea,
   /// batch_kernel.h); its sign says which of r, u3 is the larger. So the second level's chain
-  /// of libm calls waits on neither the first level's norm nor its powers.
-  /// Within a few ulps of evaluate's (docs/math.md → "Support function and the dual shape").
-  Vector3<S> gradient(const Vector3<S>& w) const {
-    const Vector3<S> u = w.cwiseProduct(scale);
+  /// of libm calls waits on neither the first level's norm nor its powers, and no pow() is
+  /// called (exp2 and log2 cost a fraction of it). Within a few ulps of the powers pow() gives
+  /// (docs/math.md → "Support function and the dual shape").
+  struct Levels {
+    PowersLog2<S> level1, level2;
+    S r;     // the first level's norm ‖(u1, u2)‖_p1
+    S norm;  // N = ‖(r, u3)‖_p2
+  };
+  Levels levels(const Vector3<S>& u) const {
     const S inf = std::numeric_limits<S>::infinity();
     const S m1 = std::max(u[0], u[1]), lo1 = std::min(u[0], u[1]);
-    if (!(m1 > S(0)) && !(u[2] > S(0))) return Vector3<S>::Zero();  // the origin
     // log2(m1/u3) of the quotient, not as a difference of logarithms: its error stays an ulp
     // of the result at any scale (a difference of two logarithms near −1000, on a shape of
     // radius 1e-300, would carry ulps of 1000). An over- or underflowing quotient gives ±∞,
@@ -160,35 +130,47 @@ struct NestedNorm {
     // log2(r/u3) = log2(m1/u3) + log2(1 + q1)/p1; r = 0 or u3 = 0 make the ratio 0.
     const S log2_r_u3 = log2_m1_u3 + inv_p1 * level1.log2_1pq;
     const bool r_is_max = !(u[2] > S(0)) || (m1 > S(0) && log2_r_u3 >= S(0));
-    // r = m1·(1 + q1)^(1/p1) = m1·(m1/r)^(p1−1)·(1 + q1), from the first level's powers, for
-    // the second level's ratio itself (only its last step waits on it).
+    // ‖(a, b)‖_p = m·(1 + q)^(1/p) = m·(m/N)^(p−1)·(1 + q), from a level's powers: r for the
+    // second level's ratio itself (only its last step waits on it), and N.
     const S r = m1 * std::max(level1.pow_a, level1.pow_b) * (S(1) + level1.q);
     const S ratio2 = !(m1 > S(0)) || !(u[2] > S(0)) ? S(0) : r_is_max ? u[2] / r : r / u[2];
     const PowersLog2<S> level2 =
         pnorm2PowersLog2(r_is_max, ratio2, ratio2 > S(0) ? -std::abs(log2_r_u3) : -inf, p2, inv_p2);
-    return Vector3<S>(level2.pow_a * level1.pow_a, level2.pow_a * level1.pow_b, level2.pow_b)
+    const S norm = (r_is_max ? r : u[2]) * std::max(level2.pow_a, level2.pow_b) * (S(1) + level2.q);
+    return {level1, level2, r, norm};
+  }
+
+  /// The gradient alone at w ≥ 0, as evaluate(w, false).gradient, for callers that wait on
+  /// it (Superellipsoid::supportPoint: the halfspace and plane pairs, GJK's support).
+  Vector3<S> gradient(const Vector3<S>& w) const {
+    const Vector3<S> u = w.cwiseProduct(scale);
+    if (!(std::max(u[0], u[1]) > S(0)) && !(u[2] > S(0))) return Vector3<S>::Zero();  // the origin
+    const Levels l = levels(u);
+    return Vector3<S>(l.level2.pow_a * l.level1.pow_a, l.level2.pow_a * l.level1.pow_b,
+                      l.level2.pow_b)
         .cwiseProduct(scale);
   }
 
-  /// Value, gradient and (if with_hessian) Hessian at w ≥ 0.
+  /// Value, gradient and (if with_hessian) Hessian at w ≥ 0, from levels().
   NestedNormEval<S> evaluate(const Vector3<S>& w, bool with_hessian) const {
     NestedNormEval<S> out;
     const Vector3<S> u = w.cwiseProduct(scale);
-    const PNorm2<S> level1 = pnorm2WithPowers(u[0], u[1], p1, inv_p1);
-    const S r = level1.norm;
-    const PNorm2<S> level2 = pnorm2WithPowers(r, u[2], p2, inv_p2);
-    out.value = level2.norm;
-    if (!(out.value > S(0))) {  // the origin: N is not differentiable; report zeros
+    if (!(std::max(u[0], u[1]) > S(0)) && !(u[2] > S(0))) {
+      // the origin: N is not differentiable; report zeros
+      out.value = S(0);
       out.gradient.setZero();
       out.hessian.setZero();
       return out;
     }
+    const Levels l = levels(u);
+    const S r = l.r;
+    out.value = l.norm;
     // Ratios t ∈ [0, 1] of each argument to its norm, and their powers. With
     // N(a, b) = ‖(a, b)‖_p:  ∂N/∂a = (a/N)^(p−1),
     //   ∂²N/∂a² = (p−1)/N·(a/N)^(p−2)·(b/N)^p,  ∂²N/∂a∂b = −(p−1)/N·(a/N)^(p−1)·(b/N)^(p−1)
     // (using 1 − (a/N)^p = (b/N)^p, which avoids the cancellation).
-    const S r1 = level1.pow_a, r2 = level1.pow_b;    // t1^(p1−1), t2^(p1−1)
-    const S g_r = level2.pow_a, g_3 = level2.pow_b;  // tr^(p2−1), t3^(p2−1)
+    const S r1 = l.level1.pow_a, r2 = l.level1.pow_b;    // t1^(p1−1), t2^(p1−1)
+    const S g_r = l.level2.pow_a, g_3 = l.level2.pow_b;  // tr^(p2−1), t3^(p2−1)
     const Vector3<S> grad_u(g_r * r1, g_r * r2, g_3);
     out.gradient = grad_u.cwiseProduct(scale);
     if (!with_hessian) return out;

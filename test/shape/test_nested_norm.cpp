@@ -1,3 +1,8 @@
+// NestedNorm::evaluate's value, gradient and Hessian against the closed forms in long double
+// with pow(), for the gauge and the support function, over ratios of the arguments from 1 to
+// 1e-4 (evaluate takes its powers from exp2 and log2: docs/math.md → "Support function and the
+// dual shape").
+//
 // The duality the Exact solver relies on when it hands a primal evaluation to the dual
 // formulation (docs/math.md → "The Exact solver"): at a surface point N with unit normal n, the
 // support function's Hessian ∇²h(n), restricted to the tangent plane, is the inverse of the
@@ -16,6 +21,67 @@
 
 namespace fcl_superellipsoid {
 namespace {
+
+/// ‖(a, b)‖_p, its gradient and Hessian in long double, straight from the definitions.
+struct Norm2L {
+  long double n, da, db, daa, dab, dbb;
+};
+Norm2L norm2L(long double a, long double b, long double p) {
+  using L = long double;
+  const L n = std::pow(std::pow(a, p) + std::pow(b, p), 1 / p);
+  const L da = std::pow(a / n, p - 1), db = std::pow(b / n, p - 1);
+  const L daa = (p - 1) / n * std::pow(a / n, p - 2) * std::pow(b / n, p);
+  const L dbb = (p - 1) / n * std::pow(b / n, p - 2) * std::pow(a / n, p);
+  const L dab = -(p - 1) / n * da * db;
+  return {n, da, db, daa, dab, dbb};
+}
+
+TEST(NestedNormTest, EvaluateMatchesTheLongDoubleNorm) {
+  using L = long double;
+  using M3 = Eigen::Matrix<L, 3, 3>;
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> exponent(0.1, 1.9), radius(0.2, 5.0), log_ratio(-4, 0);
+  double worst_value = 0, worst_gradient = 0, worst_hessian = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const Superellipsoid<double> shape(radius(rng), radius(rng), radius(rng), exponent(rng),
+                                       exponent(rng));
+    const auto norm = trial % 2 ? detail::NestedNorm<double>::gauge(shape)
+                                : detail::NestedNorm<double>::support(shape);
+    const Vector3<double> w(std::pow(10.0, log_ratio(rng)), std::pow(10.0, log_ratio(rng)),
+                            std::pow(10.0, log_ratio(rng)));
+    const detail::NestedNormEval<double> e = norm.evaluate(w, true);
+    // N = ‖(‖(u1, u2)‖_p1, u3)‖_p2 with u = scale ⊙ w, and its derivatives by the chain rule.
+    const Eigen::Matrix<L, 3, 1> s = norm.scale.cast<L>();
+    const Eigen::Matrix<L, 3, 1> u = s.cwiseProduct(w.cast<L>());
+    const Norm2L inner = norm2L(u[0], u[1], L(norm.p1));
+    const Norm2L outer = norm2L(inner.n, u[2], L(norm.p2));
+    const Eigen::Matrix<L, 3, 1> dr(inner.da, inner.db, 0);
+    M3 drr = M3::Zero();
+    drr(0, 0) = inner.daa;
+    drr(1, 1) = inner.dbb;
+    drr(0, 1) = drr(1, 0) = inner.dab;
+    const Eigen::Matrix<L, 3, 1> e3(0, 0, 1);
+    Eigen::Matrix<L, 3, 1> gradient = outer.da * dr + outer.db * e3;
+    M3 hessian = outer.daa * dr * dr.transpose() + outer.da * drr +
+                 outer.dab * (dr * e3.transpose() + e3 * dr.transpose()) +
+                 outer.dbb * e3 * e3.transpose();
+    gradient = gradient.cwiseProduct(s);
+    hessian = s.asDiagonal() * hessian * s.asDiagonal();
+    const double value_error = double(std::abs(L(e.value) - outer.n) / outer.n);
+    const double gradient_error =
+        double((e.gradient.cast<L>() - gradient).norm() / gradient.norm());
+    const double hessian_error = double((e.hessian.cast<L>() - hessian).norm() / hessian.norm());
+    worst_value = std::max(worst_value, value_error);
+    worst_gradient = std::max(worst_gradient, gradient_error);
+    worst_hessian = std::max(worst_hessian, hessian_error);
+  }
+  const double ulp = std::numeric_limits<double>::epsilon();
+  EXPECT_LE(worst_value, 8 * ulp);
+  EXPECT_LE(worst_gradient, 16 * ulp);
+  EXPECT_LE(worst_hessian, 1e-13);
+  std::printf("evaluate: worst value %.2f ulps, gradient %.2f ulps, Hessian %.3g (relative)\n",
+              worst_value / ulp, worst_gradient / ulp, worst_hessian);
+}
 
 TEST(NestedNormTest, DualHessianIsTheInverseShapeOperator) {
   std::mt19937 rng(11);
