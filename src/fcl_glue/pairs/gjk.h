@@ -42,18 +42,6 @@ struct Simplex {
   Vector3<S> w[4], a[4], b[4];
   int size = 0;
 
-  /// Keeps the points at `indices` (ascending), in that order.
-  void keep(std::initializer_list<int> indices) {
-    int k = 0;
-    for (int i : indices) {  // i ≥ k: nothing is overwritten before it is read
-      w[k] = w[i];
-      a[k] = a[i];
-      b[k] = b[i];
-      ++k;
-    }
-    size = k;
-  }
-
   /// Σ weights_i·points_i over the kept points (w, a or b).
   Vector3<S> combination(const Vector3<S> (&points)[4], const S weights[4]) const {
     Vector3<S> out = Vector3<S>::Zero();
@@ -62,111 +50,101 @@ struct Simplex {
   }
 };
 
-/// Of several sub-simplices with their nearest points (weights over each), the one nearest the
-/// origin.
+/// The nearest point to the origin of a sub-simplex's hull: the points it keeps (indices into
+/// the simplex, ascending) and their barycentric weights. The sub-algorithms below read only
+/// the points w and return one of these; the simplex is reduced once, at the end.
+template <typename S>
+struct Reduced {
+  int index[4];
+  S lambda[4];
+  int size;
+
+  Vector3<S> point(const Vector3<S>* w) const {
+    Vector3<S> out = Vector3<S>::Zero();
+    for (int k = 0; k < size; ++k) out += lambda[k] * w[index[k]];
+    return out;
+  }
+};
+
+template <typename S>
+Reduced<S> vertexOf(int i) {
+  return {{i}, {S(1)}, 1};
+}
+
+/// Segment [i, j] (Ericson, Real-Time Collision Detection, 5.1.2, with the point at the origin).
+template <typename S>
+Reduced<S> nearestOnSegment(const Vector3<S>* w, int i, int j) {
+  const Vector3<S> p = w[i], e = w[j] - w[i];
+  const S t = -p.dot(e), ee = e.squaredNorm();
+  if (!(t > S(0)) || !(ee > S(0))) return vertexOf<S>(i);
+  if (t >= ee) return vertexOf<S>(j);
+  return {{i, j}, {S(1) - t / ee, t / ee}, 2};
+}
+
+/// Of several sub-simplices, the one whose nearest point is nearest the origin.
 template <typename S>
 class NearestOfSeveral {
  public:
-  void offer(const Simplex<S>& sub, const S weights[4]) {
-    const Vector3<S> v = sub.combination(sub.w, weights);
-    if (!(v.squaredNorm() < best_distance_)) return;
-    best_distance_ = v.squaredNorm();
-    best_ = sub;
-    for (int i = 0; i < 4; ++i) best_weights_[i] = weights[i];
+  void offer(const Vector3<S>* w, const Reduced<S>& r) {
+    const S d = r.point(w).squaredNorm();
+    if (!(d < best_distance_)) return;
+    best_distance_ = d;
+    best_ = r;
   }
   bool any() const { return best_distance_ < std::numeric_limits<S>::infinity(); }
-  void into(Simplex<S>* s, S lambda[4]) const {
-    *s = best_;
-    for (int i = 0; i < 4; ++i) lambda[i] = best_weights_[i];
-  }
+  const Reduced<S>& best() const { return best_; }
 
  private:
-  Simplex<S> best_;
-  S best_weights_[4] = {};
+  Reduced<S> best_{};
   S best_distance_ = std::numeric_limits<S>::infinity();
 };
 
-/// The nearest point to the origin of the simplex's hull, as barycentric weights `lambda` over
-/// the kept points; the simplex is reduced to the points with positive weight. False if the
-/// origin is inside a tetrahedron (C's hull reaches it).
+/// Triangle [i, j, k] (Ericson 5.1.5, with the point at the origin).
 template <typename S>
-bool nearest(Simplex<S>* s, S lambda[4]);
-
-/// Segment [0, 1] (Ericson, Real-Time Collision Detection, 5.1.2, with the point at the origin).
-template <typename S>
-void nearestOnSegment(Simplex<S>* s, S lambda[4]) {
-  const Vector3<S> p = s->w[0], e = s->w[1] - s->w[0];
-  const S t = -p.dot(e), ee = e.squaredNorm();
-  if (!(t > S(0)) || !(ee > S(0))) {
-    s->keep({0});
-    lambda[0] = S(1);
-  } else if (t >= ee) {
-    s->keep({1});
-    lambda[0] = S(1);
-  } else {
-    lambda[0] = S(1) - t / ee;
-    lambda[1] = t / ee;
-  }
-}
-
-/// Triangle [0, 1, 2] (Ericson 5.1.5, with the point at the origin).
-template <typename S>
-void nearestOnTriangle(Simplex<S>* s, S lambda[4]) {
-  auto vertex = [&](int i) {
-    s->keep({i});
-    lambda[0] = S(1);
+Reduced<S> nearestOnTriangle(const Vector3<S>* w, int i, int j, int k) {
+  auto edge = [&](int x, int y, S t) {  // (1 − t)·w_x + t·w_y
+    return Reduced<S>{{x, y}, {S(1) - t, t}, 2};
   };
-  auto edge = [&](int i, int j, S t) {  // (1 − t)·w_i + t·w_j
-    s->keep({i, j});
-    lambda[0] = S(1) - t;
-    lambda[1] = t;
-  };
-  const Vector3<S> a = s->w[0], b = s->w[1], c = s->w[2];
+  const Vector3<S> a = w[i], b = w[j], c = w[k];
   const Vector3<S> ab = b - a, ac = c - a;
   const S d1 = -ab.dot(a), d2 = -ac.dot(a);
-  if (d1 <= S(0) && d2 <= S(0)) return vertex(0);
+  if (d1 <= S(0) && d2 <= S(0)) return vertexOf<S>(i);
   const S d3 = -ab.dot(b), d4 = -ac.dot(b);
-  if (d3 >= S(0) && d4 <= d3) return vertex(1);
+  if (d3 >= S(0) && d4 <= d3) return vertexOf<S>(j);
   const S vc = d1 * d4 - d3 * d2;
-  if (vc <= S(0) && d1 >= S(0) && d3 <= S(0)) return edge(0, 1, d1 / (d1 - d3));
+  if (vc <= S(0) && d1 >= S(0) && d3 <= S(0)) return edge(i, j, d1 / (d1 - d3));
   const S d5 = -ab.dot(c), d6 = -ac.dot(c);
-  if (d6 >= S(0) && d5 <= d6) return vertex(2);
+  if (d6 >= S(0) && d5 <= d6) return vertexOf<S>(k);
   const S vb = d5 * d2 - d1 * d6;
-  if (vb <= S(0) && d2 >= S(0) && d6 <= S(0)) return edge(0, 2, d2 / (d2 - d6));
+  if (vb <= S(0) && d2 >= S(0) && d6 <= S(0)) return edge(i, k, d2 / (d2 - d6));
   const S va = d3 * d6 - d5 * d4;
   if (va <= S(0) && (d4 - d3) >= S(0) && (d5 - d6) >= S(0)) {
-    return edge(1, 2, (d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    return edge(j, k, (d4 - d3) / ((d4 - d3) + (d5 - d6)));
   }
   const S denominator = va + vb + vc;
   if (!(std::abs(denominator) > S(0))) {  // degenerate: the best of its edges
     NearestOfSeveral<S> best;
-    for (auto edge : {std::initializer_list<int>{0, 1}, {0, 2}, {1, 2}}) {
-      Simplex<S> e = *s;
-      e.keep(edge);
-      S l[4] = {};
-      nearestOnSegment(&e, l);
-      best.offer(e, l);
-    }
-    if (!best.any()) return vertex(0);  // not a number anywhere: the search gives up later
-    return best.into(s, lambda);
+    best.offer(w, nearestOnSegment(w, i, j));
+    best.offer(w, nearestOnSegment(w, i, k));
+    best.offer(w, nearestOnSegment(w, j, k));
+    if (!best.any()) return vertexOf<S>(i);  // not a number anywhere: the search gives up later
+    return best.best();
   }
-  lambda[1] = vb / denominator;
-  lambda[2] = vc / denominator;
-  lambda[0] = S(1) - lambda[1] - lambda[2];
+  const S l1 = vb / denominator, l2 = vc / denominator;
+  return {{i, j, k}, {S(1) - l1 - l2, l1, l2}, 3};
 }
 
+/// The nearest point to the origin of the hull of the first n points w; nothing if the origin
+/// is inside a tetrahedron (C's hull reaches it).
 template <typename S>
-bool nearest(Simplex<S>* s, S lambda[4]) {
-  switch (s->size) {
+std::optional<Reduced<S>> nearest(const Vector3<S>* w, int n) {
+  switch (n) {
     case 1:
-      lambda[0] = S(1);
-      return true;
+      return vertexOf<S>(0);
     case 2:
-      nearestOnSegment(s, lambda);
-      return true;
+      return nearestOnSegment(w, 0, 1);
     case 3:
-      nearestOnTriangle(s, lambda);
-      return true;
+      return nearestOnTriangle(w, 0, 1, 2);
     default:
       break;
   }
@@ -174,20 +152,28 @@ bool nearest(Simplex<S>* s, S lambda[4]) {
   static constexpr int kFaces[4][4] = {{0, 1, 2, 3}, {0, 1, 3, 2}, {0, 2, 3, 1}, {1, 2, 3, 0}};
   NearestOfSeveral<S> best;
   for (const auto& f : kFaces) {
-    const Vector3<S> n = (s->w[f[1]] - s->w[f[0]]).cross(s->w[f[2]] - s->w[f[0]]);
-    const S origin_side = -s->w[f[0]].dot(n), opposite_side = (s->w[f[3]] - s->w[f[0]]).dot(n);
+    const Vector3<S> normal = (w[f[1]] - w[f[0]]).cross(w[f[2]] - w[f[0]]);
+    const S origin_side = -w[f[0]].dot(normal), opposite_side = (w[f[3]] - w[f[0]]).dot(normal);
     // Outside this face: the origin and the fourth point on opposite sides of its plane (a flat
     // tetrahedron counts every face).
     if (!(origin_side * opposite_side < S(0)) && opposite_side != S(0)) continue;
-    Simplex<S> face = *s;
-    face.keep({f[0], f[1], f[2]});
-    S l[4] = {};
-    nearestOnTriangle(&face, l);
-    best.offer(face, l);
+    best.offer(w, nearestOnTriangle(w, f[0], f[1], f[2]));
   }
-  if (!best.any()) return false;
-  best.into(s, lambda);
-  return true;
+  if (!best.any()) return std::nullopt;
+  return best.best();
+}
+
+/// The simplex reduced to r's points, in r's (ascending) order, with r's weights in `lambda`.
+template <typename S>
+void reduce(Simplex<S>* s, const Reduced<S>& r, S lambda[4]) {
+  for (int k = 0; k < r.size; ++k) {  // index[k] ≥ k: nothing is overwritten before it is read
+    s->w[k] = s->w[r.index[k]];
+    s->a[k] = s->a[r.index[k]];
+    s->b[k] = s->b[r.index[k]];
+    lambda[k] = r.lambda[k];
+  }
+  for (int k = r.size; k < 4; ++k) lambda[k] = S(0);
+  s->size = r.size;
 }
 
 }  // namespace gjk
@@ -230,17 +216,16 @@ std::optional<GjkSeparation<S>> gjkSeparation(const SupportA& support_a, const S
     bool done = vv - vw <= relative_gap * vv;
     for (int i = 0; i < s.size && !done; ++i) done = s.w[i] == w;
     if (done) return answer();
-    gjk::Simplex<S> grown = s;
-    grown.w[grown.size] = w;
-    grown.a[grown.size] = a;
-    grown.b[grown.size] = b;
-    ++grown.size;
-    S grown_lambda[4] = {};
-    if (!gjk::nearest(&grown, grown_lambda)) return std::nullopt;  // the origin is inside
-    const Vector3<S> next = grown.combination(grown.w, grown_lambda);
+    // The grown simplex: w in the slot after the kept points (the answer above still reads
+    // only the kept ones).
+    s.w[s.size] = w;
+    s.a[s.size] = a;
+    s.b[s.size] = b;
+    const std::optional<gjk::Reduced<S>> r = gjk::nearest(s.w, s.size + 1);
+    if (!r) return std::nullopt;  // the origin is inside
+    const Vector3<S> next = r->point(s.w);
     if (!(next.squaredNorm() < vv)) return answer();  // no progress: as above
-    s = grown;
-    for (int i = 0; i < 4; ++i) lambda[i] = grown_lambda[i];
+    gjk::reduce(&s, *r, lambda);
     v = next;
   }
   return std::nullopt;
