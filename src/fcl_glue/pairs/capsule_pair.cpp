@@ -2,7 +2,9 @@
 
 #include <fcl/geometry/shape/capsule.h>
 
+#include "fcl_glue/pairs/candidates.h"
 #include "fcl_glue/pairs/depth_candidates.h"
+#include "fcl_glue/pairs/feature_newton.h"
 #include "fcl_glue/pairs/libccd_pair.h"
 #include "fcl_glue/pairs/segment_search.h"
 
@@ -14,13 +16,24 @@ std::optional<PairHit<S>> capsuleHit(const Pair<S>& pair) {
   if (capsule == nullptr) return std::nullopt;
   const Vector3<S> half_axis = pair.X_WO->linear().col(2) * (capsule->lz / 2);
   const Vector3<S> centre = pair.X_WO->translation();
-  const SegmentMinimum<S> m = nearestOnSegment(
-      *pair.shape, *pair.X_WS, Vector3<S>(centre - half_axis), Vector3<S>(centre + half_axis));
+  const Vector3<S> p0 = centre - half_axis, p1 = centre + half_axis;
+  const S radius = capsule->radius;
+  // The axis apart from the shape: against the shape's support function (feature_newton.h),
+  // certified by the duality gap of the axis (candidates.h); the capsule's answer is the axis's
+  // moved by the radius, an overlap too where the axis stays outside. Else the point queries.
+  if (const std::optional<PairHit<S>> axis = segmentApart(
+          *pair.shape, *pair.X_WS, p0, p1, Vector3<S>(centre - pair.X_WS->translation()))) {
+    auto support = [&](const Vector3<S>& u) { return std::max(u.dot(p0), u.dot(p1)); };
+    Candidates<S, decltype(support)> candidates(pair, support, capsule->lz / 2 + radius);
+    if (candidates.offer(*axis)) {
+      return PairHit<S>{axis->distance - radius, Vector3<S>(axis->on_other - radius * axis->normal),
+                        axis->on_shape, axis->normal, -1};
+    }
+  }
+  const SegmentMinimum<S> m = nearestOnSegment(*pair.shape, *pair.X_WS, p0, p1);
   if (!(m.at.distance > S(0))) {
     // The axis penetrates the shape: the least F over the ends' escape directions, the axis's
     // family of directions and MPR's normal (depth_candidates.h).
-    const Vector3<S> p0 = centre - half_axis, p1 = centre + half_axis;
-    const S radius = capsule->radius;
     auto support = [&](const Vector3<S>& u) {
       return std::max(u.dot(p0), u.dot(p1)) + radius * u.norm();
     };

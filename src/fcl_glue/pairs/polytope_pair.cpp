@@ -13,6 +13,7 @@
 
 #include "fcl_glue/pairs/candidates.h"
 #include "fcl_glue/pairs/depth_candidates.h"
+#include "fcl_glue/pairs/feature_newton.h"
 #include "fcl_glue/pairs/segment_search.h"
 
 namespace fcl_superellipsoid {
@@ -306,7 +307,8 @@ bool insideFace(const Polytope<S>& p, const std::vector<int>& loop, const Vector
 /// The exact answer for separated shapes, if a candidate is certified.
 template <typename S>
 std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Polytope<S>& p,
-                                         const Vector3<S>& normal) {
+                                         const PairHit<S>& start) {
+  const Vector3<S>& normal = start.normal;
   // The polytope's vertices near its support along −normal span the candidate features.
   const S margin = S(1e-3) * p.extent;
   S best_support = -std::numeric_limits<S>::infinity();
@@ -328,21 +330,24 @@ std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Polytope<S>&
     if (insideFace(p, loop, b) && candidates.offer({d, b, a, Vector3<S>(-n), -1}))
       return candidates.certified();
   }
-  // Edges with both ends near.
+  // Edges with both ends near: Newton on the shape's support function (feature_newton.h) from
+  // the start's normal, and point queries along the edge where that is not certified.
   for (const Edge& edge : p.edges()) {
     if (!near[edge.i] || !near[edge.j]) continue;
-    const SegmentMinimum<S> m =
-        nearestOnSegment(*pair.shape, *pair.X_WS, p.vertices[edge.i], p.vertices[edge.j]);
+    const Vector3<S>& a = p.vertices[edge.i];
+    const Vector3<S>& b = p.vertices[edge.j];
+    const std::optional<PairHit<S>> hit = segmentApart(*pair.shape, *pair.X_WS, a, b, normal);
+    if (hit && candidates.offer(*hit)) return candidates.certified();
+    const SegmentMinimum<S> m = nearestOnSegment(*pair.shape, *pair.X_WS, a, b);
     if (candidates.offer({m.at.distance, m.point, m.at.nearest_point, m.at.normal, -1}))
       return candidates.certified();
   }
-  // Vertices.
+  // Vertices: the point solver, warm-started at the start's witness.
   for (std::size_t i = 0; i < p.vertices.size(); ++i) {
     if (!near[i]) continue;
-    const PointDistanceResult<S> r =
-        pointDistance(*pair.shape, *pair.X_WS, p.vertices[i], pair.shape->queryOptions());
-    if (candidates.offer({r.distance, p.vertices[i], r.nearest_point, r.normal, -1}))
-      return candidates.certified();
+    const std::optional<PairHit<S>> hit =
+        pointApart(*pair.shape, *pair.X_WS, p.vertices[i], start.on_shape);
+    if (hit && candidates.offer(*hit)) return candidates.certified();
   }
   return candidates.certified();
 }
@@ -411,7 +416,7 @@ std::optional<PairHit<S>> polytopeHit(const Pair<S>& pair) {
   if (!p) return std::nullopt;
   return exactPair(
       pair, p->extent, [&](const Vector3<S>& u) { return p->supportPoint(u); },
-      [&](const PairHit<S>& start) { return exactSeparated(pair, *p, start.normal); },
+      [&](const PairHit<S>& start) { return exactSeparated(pair, *p, start); },
       [&](const PairHit<S>& start) { return overlap(pair, *p, start); });
 }
 

@@ -11,6 +11,7 @@
 
 #include "fcl_glue/pairs/candidates.h"
 #include "fcl_glue/pairs/depth_candidates.h"
+#include "fcl_glue/pairs/feature_newton.h"
 #include "fcl_glue/pairs/segment_search.h"
 
 namespace fcl_superellipsoid {
@@ -171,6 +172,10 @@ std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Round<S>& b,
     if (b.cone && side > S(0)) continue;
     if (std::abs(z0 - side * b.h) > margin || std::abs(rho0 - b.r) > margin) continue;
     const Vector3<S> centre = b.t + side * b.h * b.z;
+    // Newton on the rim's disc (feature_newton.h), else point queries along the rim.
+    const std::optional<PairHit<S>> disc =
+        discApart(*pair.shape, *pair.X_WS, centre, b.z, b.r, start.normal);
+    if (disc && candidates.offer(*disc)) return candidates.certified();
     auto at = [&](S theta) {
       const Vector3<S> p = centre + b.r * b.circle(theta);
       const PairHit<S> hit = pointHit(p);
@@ -181,7 +186,9 @@ std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Round<S>& b,
     }
   }
   if (b.cone && (start.on_other - (b.t + b.h * b.z)).norm() <= margin) {
-    if (candidates.offer(pointHit(Vector3<S>(b.t + b.h * b.z)))) return candidates.certified();
+    const std::optional<PairHit<S>> hit =
+        pointApart(*pair.shape, *pair.X_WS, Vector3<S>(b.t + b.h * b.z), start.on_shape);
+    if (hit && candidates.offer(*hit)) return candidates.certified();
   }
   return candidates.certified();
 }
