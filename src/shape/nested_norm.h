@@ -53,7 +53,8 @@ struct PowersLog2 {
 
 template <typename S>
 inline PowersLog2<S> pnorm2PowersLog2(bool a_is_max, S ratio, S log2_ratio, S p, S inv_p) {
-  const S q = ratio > S(0) ? std::exp2(p * log2_ratio) : S(0);
+  // t = 1 gives q = 1 for every p, also p = ∞ (ε subnormal), where p·log2 t would be ∞·0.
+  const S q = ratio > S(0) ? (log2_ratio == S(0) ? S(1) : std::exp2(p * log2_ratio)) : S(0);
   const S log2_one_plus_q = std::log2(S(1) + q);
   const S pow_m = std::exp2((inv_p - S(1)) * log2_one_plus_q);
   S pow_lo = S(0);
