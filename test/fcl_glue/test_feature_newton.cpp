@@ -6,8 +6,8 @@
 // distance is d and the witnesses are a and p (the shape is strictly convex). One segment per
 // branch of segmentApart: of no length, in the plane through p (p inside the segment), leaving the
 // plane from p (p an end, the line missing the shape), the same with the line pointing into the
-// shape (the line meets it), and a segment through the shape (nothing found); a disc whose rim
-// touches the plane at p.
+// shape (the line meets it), and a segment through the shape (nothing found); segmentInteriorApart
+// on the first two (the answer, then nothing); a disc whose rim touches the plane at p.
 
 #include <gtest/gtest.h>
 
@@ -64,6 +64,8 @@ TEST(FeatureNewton, PointsAndSegmentsAgainstTheConstruction) {
     // The point itself.
     expectHit(pointApart(c.shape, c.X_WA, Vector3<double>(p.cast<double>()), start), c, d, p,
               "point");
+    expectHit(pointApart(c.shape, c.X_WA, Vector3<double>(p.cast<double>()), noHint<double>()), c,
+              d, p, "point, cold");
     // A segment of no length: the point.
     expectHit(segmentApart(c.shape, c.X_WA, Vector3<double>(p.cast<double>()),
                            Vector3<double>(p.cast<double>()), start),
@@ -71,10 +73,11 @@ TEST(FeatureNewton, PointsAndSegmentsAgainstTheConstruction) {
     // A segment in the plane, p between its ends.
     const LD h = LD(half(rng)) * LD(c.shape.size());
     const LD f = LD(std::uniform_real_distribution<double>(-0.8, 0.8)(rng));
-    expectHit(
-        segmentApart(c.shape, c.X_WA, Vector3<double>((p - (1 + f) * h * side).cast<double>()),
-                     Vector3<double>((p + (1 - f) * h * side).cast<double>()), start),
-        c, d, p, "segment in the plane");
+    const Vector3<double> e0 = (p - (1 + f) * h * side).cast<double>();
+    const Vector3<double> e1 = (p + (1 - f) * h * side).cast<double>();
+    expectHit(segmentApart(c.shape, c.X_WA, e0, e1, start), c, d, p, "segment in the plane");
+    expectHit(segmentInteriorApart(c.shape, c.X_WA, e0, e1, start), c, d, p,
+              "segment in the plane, its interior alone");
     // A segment from p leaving the plane, either end first; the line behind it may miss or meet
     // the shape.
     const LD angle = LD(tilt(rng));
@@ -86,6 +89,14 @@ TEST(FeatureNewton, PointsAndSegmentsAgainstTheConstruction) {
     expectHit(segmentApart(c.shape, c.X_WA, Vector3<double>(q.cast<double>()),
                            Vector3<double>(p.cast<double>()), start),
               c, d, p, "segment leaving the plane, reversed");
+    // Its interior alone: the nearest point is an end, so nothing (or that end, to rounding).
+    const std::optional<PairHit<double>> interior =
+        segmentInteriorApart(c.shape, c.X_WA, Vector3<double>(p.cast<double>()),
+                             Vector3<double>(q.cast<double>()), start);
+    EXPECT_FALSE(interior.has_value() &&
+                 (interior->on_other - p.cast<double>()).norm() > 1e-9 * c.shape.size())
+        << "the interior of a segment leaving the plane at its end gave a point "
+        << (interior->on_other - p.cast<double>()).norm() << " from that end";
     // Along the normal: its line goes through the shape.
     const V3 r = p + 2 * h * c.u;
     expectHit(segmentApart(c.shape, c.X_WA, Vector3<double>(r.cast<double>()),

@@ -92,6 +92,12 @@ CircleProbe<S> lineMinimum(const SupportMap<S>& A, const Vector3<S>& c, const Ve
   return p;
 }
 
+/// pointApart's hint for none: the point solver starts on its own.
+template <typename S>
+Vector3<S> noHint() {
+  return Vector3<S>::Constant(std::numeric_limits<S>::quiet_NaN());
+}
+
 /// p and the shape's (posed by X_WS) point nearest to it, a negative distance where p lies
 /// inside: the point solver, warm-started at hint_W, a point of the shape's surface near the
 /// answer (outside, a converged warm start is the answer: solvers.h); nothing if it is not finite.
@@ -108,16 +114,42 @@ std::optional<PairHit<S>> pointApart(const Superellipsoid<S>& shape, const fcl::
 
 /// The disc's point nearest to the shape (posed by X_WS) and the shape's nearest point, if the
 /// disc (centre, unit axis, radius r) is found apart from it; v0 is where the search starts (a
-/// direction from the shape towards the disc).
+/// direction from the shape towards the disc); at most `max_iterations` Newton steps.
 template <typename S>
 std::optional<PairHit<S>> discApart(const Superellipsoid<S>& shape, const fcl::Transform3<S>& X_WS,
                                     const Vector3<S>& centre, const Vector3<S>& axis, S r,
-                                    const Vector3<S>& v0) {
+                                    const Vector3<S>& v0,
+                                    int max_iterations = kSphereNewtonIterations) {
   const Vector3<S> start = v0.squaredNorm() > S(0) ? v0 : Vector3<S>::UnitZ();
-  const Probe<S> q =
-      localMinimum(SupportMap<S>(shape, X_WS), SupportMap<S>::ofCircle(centre, axis, r), start);
+  const Probe<S> q = localMinimum(SupportMap<S>(shape, X_WS),
+                                  SupportMap<S>::ofCircle(centre, axis, r), start, max_iterations);
   if (!(q.f < S(0)) || !q.v.allFinite() || !q.b.allFinite()) return std::nullopt;
   return PairHit<S>{(q.b - q.a).norm(), q.b, q.a, q.v, -1};
+}
+
+/// The pair of points of lineMinimum's answer, the line's at s along the axis from c.
+template <typename S>
+PairHit<S> lineHit(const CircleProbe<S>& line, const Vector3<S>& c, const Vector3<S>& axis, S s) {
+  const Vector3<S> b = c + s * axis;
+  return PairHit<S>{(b - line.a).norm(), b, line.a, line.v, -1};
+}
+
+/// segmentApart's first case alone: the segment's interior point nearest to the shape, if the
+/// segment's line is apart from the shape and its nearest point lies on the segment; nothing
+/// otherwise (no point query for the ends).
+template <typename S>
+std::optional<PairHit<S>> segmentInteriorApart(const Superellipsoid<S>& shape,
+                                               const fcl::Transform3<S>& X_WS, const Vector3<S>& p0,
+                                               const Vector3<S>& p1, const Vector3<S>& v0) {
+  const Vector3<S> e = p1 - p0, c = S(0.5) * (p0 + p1);
+  const S length = e.norm();
+  if (!(length > S(0))) return std::nullopt;
+  const Vector3<S> axis = e / length;
+  const CircleProbe<S> line = lineMinimum(SupportMap<S>(shape, X_WS), c, axis, v0);
+  if (!(line.g < S(0)) || !line.v.allFinite()) return std::nullopt;
+  const S s = (line.a - c).dot(axis);
+  if (!(std::abs(s) <= S(0.5) * length)) return std::nullopt;
+  return lineHit(line, c, axis, s);
 }
 
 /// The segment's point nearest to the shape (posed by X_WS) and the shape's nearest point, if
@@ -138,10 +170,7 @@ std::optional<PairHit<S>> segmentApart(const Superellipsoid<S>& shape,
   const CircleProbe<S> line = lineMinimum(A, c, axis, v0);
   if (line.g < S(0) && line.v.allFinite()) {
     const S s = (line.a - c).dot(axis);
-    if (std::abs(s) <= S(0.5) * length) {
-      const Vector3<S> b = c + s * axis;
-      return PairHit<S>{(b - line.a).norm(), b, line.a, line.v, -1};
-    }
+    if (std::abs(s) <= S(0.5) * length) return lineHit(line, c, axis, s);
     const Vector3<S>& end = s > S(0) ? p1 : p0;
     return pointApart(shape, X_WS, end, line.a);
   }

@@ -15,6 +15,7 @@
 #include "fcl_glue/pairs/depth_candidates.h"
 #include "fcl_glue/pairs/feature_newton.h"
 #include "fcl_glue/pairs/segment_search.h"
+#include "shape/nested_norm.h"
 
 namespace fcl_superellipsoid {
 namespace detail {
@@ -352,6 +353,62 @@ std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Polytope<S>&
   return candidates.certified();
 }
 
+/// The exact answer for separated shapes from the features at the polytope's vertex of least
+/// gauge (the one the shape's own scaling puts nearest), tried before any GJK: the faces at that
+/// vertex (the shape's support point along −n projected into the face), the vertex itself (the
+/// point solver, cold), the edges at it (Newton on the support function from the vertex's
+/// normal). Nothing unless one is certified; nothing more is tried once the shapes are seen to
+/// overlap (that vertex inside the shape, or the shape's support point inside the polytope).
+/// Where the contact is a face, that vertex is one of its vertices whenever the gauge orders the
+/// vertices as the distance does (the others lie behind the face's plane); a miss costs the
+/// features tried, then GJK starts as before (docs/math.md → "Shape pairs").
+template <typename S>
+std::optional<PairHit<S>> nearestVertexFeatures(const Pair<S>& pair, const Polytope<S>& p) {
+  const fcl::Transform3<S> X_SW = pair.X_WS->inverse(Eigen::Isometry);
+  const NestedNorm<S> gauge = NestedNorm<S>::gauge(*pair.shape);
+  std::size_t nearest = 0;
+  S least = std::numeric_limits<S>::infinity();
+  for (std::size_t i = 0; i < p.vertices.size(); ++i) {
+    const Vector3<S> u = Vector3<S>(X_SW * p.vertices[i]).cwiseAbs().cwiseProduct(gauge.scale);
+    const S g = u.isZero() ? S(0) : gauge.levels(u).norm;  // the gauge, without pow()
+    if (g < least) {
+      least = g;
+      nearest = i;
+    }
+  }
+  if (!(least > S(1)) || !std::isfinite(least)) return std::nullopt;
+  const int k = int(nearest);
+  const Vector3<S>& w = p.vertices[nearest];
+  auto support = [&p](const Vector3<S>& u) { return p.support(u); };
+  Candidates<S, decltype(support)> candidates(pair, support, p.extent);
+  for (std::size_t f = 0; f < p.faces().size(); ++f) {
+    const std::vector<int>& loop = p.faces()[f];
+    if (std::find(loop.begin(), loop.end(), k) == loop.end()) continue;
+    const Vector3<S>& n = p.normals[f];
+    const Vector3<S> a = shapeSupport(pair, Vector3<S>(-n));
+    if (p.outside(a) <= S(0)) return std::nullopt;  // a point of the shape inside: overlapping
+    const S d = n.dot(a - w);
+    const Vector3<S> b = a - d * n;
+    if (insideFace(p, loop, b) && candidates.offer({d, b, a, Vector3<S>(-n), -1}))
+      return candidates.certified();
+  }
+  const std::optional<PairHit<S>> vertex = pointApart(*pair.shape, *pair.X_WS, w, noHint<S>());
+  if (!vertex) return std::nullopt;
+  if (candidates.offer(*vertex)) return candidates.certified();
+  for (const Edge& edge : p.edges()) {
+    if (edge.i != k && edge.j != k) continue;
+    // The distance is convex along the edge: nearer than the vertex only if it falls from the
+    // vertex into the edge, and then its minimum is inside the edge or at the other end (left
+    // to GJK's start below).
+    const Vector3<S>& other_end = p.vertices[edge.i == k ? edge.j : edge.i];
+    if (!(vertex->normal.dot(other_end - w) < S(0))) continue;
+    const std::optional<PairHit<S>> hit = segmentInteriorApart(
+        *pair.shape, *pair.X_WS, p.vertices[edge.i], p.vertices[edge.j], vertex->normal);
+    if (hit && candidates.offer(*hit)) return candidates.certified();
+  }
+  return candidates.certified();
+}
+
 /// The world direction v mirrored across the superellipsoid's k-th coordinate plane.
 template <typename S>
 Vector3<S> mirrored(const Pair<S>& pair, const Vector3<S>& v, int k) {
@@ -414,6 +471,7 @@ template <typename S>
 std::optional<PairHit<S>> polytopeHit(const Pair<S>& pair) {
   const std::optional<Polytope<S>> p = polytopeOf(pair);
   if (!p) return std::nullopt;
+  if (const std::optional<PairHit<S>> hit = nearestVertexFeatures(pair, *p)) return hit;
   return exactPair(
       pair, p->extent, [&](const Vector3<S>& u) { return p->supportPoint(u); },
       [&](const PairHit<S>& start) { return exactSeparated(pair, *p, start); },

@@ -4,6 +4,7 @@
 #include <fcl/geometry/shape/cylinder.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <type_traits>
@@ -114,6 +115,193 @@ std::optional<Payload> minimumAround(At at, S x0) {
   return stationaryPoint<S>(at, lo, hi).payload;
 }
 
+/// The side's candidate, over its outward normals m(θ) from θ0 (the direction to the other
+/// shape is v = −m): F(θ) = h_A(−m) + h_B(m), with h_B(m) = m·t + r for the cylinder (m ⊥ z) and
+/// m·apex for the cone (m ∝ 2h·c(θ) + r·z), so F' = m'·(t − a) or m'·(apex − a), a = the support
+/// point; nothing where F has no minimum near θ0 or its point is off the side.
+template <typename S>
+std::optional<PairHit<S>> sideHit(const Pair<S>& pair, const Round<S>& b, S theta0) {
+  struct Side {
+    Vector3<S> v, a;
+  };
+  auto at = [&](S theta) {
+    const Vector3<S> m = b.sideNormal(theta);
+    const Vector3<S> a = shapeSupport(pair, Vector3<S>(-m));
+    const S derivative = b.sideNormalDerivative(theta).dot(b.sideAnchor() - a);
+    return Sample<S, Side>{theta, derivative, {Vector3<S>(-m), a}};
+  };
+  const std::optional<Side> s = minimumAround<S, Side>(at, theta0);
+  if (!s) return std::nullopt;
+  const S gap = -b.support(Vector3<S>(-s->v)) - s->v.dot(s->a);  // −h_B(−v) − h_A(v)
+  const Vector3<S> on = s->a + gap * s->v;
+  if (!(std::abs((on - b.t).dot(b.z)) <= b.h)) return std::nullopt;
+  return PairHit<S>{gap, on, s->a, s->v, -1};
+}
+
+/// sideHit by Newton's method in θ from θ0 (few support evaluations with their Hessians where
+/// sideHit's bracketing takes dozens of support points): F' = m'·(anchor − a) as there, and
+/// F'' = m''·(anchor − a) + m'·∇²h_A(−m)·m' (a = ∇h_A(−m)), with a backtracking line search;
+/// F is convex in θ near a minimum with F < 0 (the side apart from the shape). Nothing unless
+/// it settles at a minimum with F < 0 whose point is on the side.
+template <typename S>
+std::optional<PairHit<S>> sideNewton(const Pair<S>& pair, const Round<S>& b, S theta0) {
+  const SupportMap<S> A(*pair.shape, *pair.X_WS);
+  const S slant = std::hypot(2 * b.h, b.r);
+  const S curl = b.cone && slant > S(0) ? 2 * b.h / slant : S(1);  // m'' = −curl·c(θ)
+  const Vector3<S> anchor = b.sideAnchor();
+  const S offset = b.cone ? S(0) : b.r;  // h_B(m) = m·anchor + offset
+  struct At {
+    S theta, f, f1, f2;
+    Vector3<S> m, a;
+  };
+  auto at = [&](S theta) {
+    const Vector3<S> m = b.sideNormal(theta), m1 = b.sideNormalDerivative(theta);
+    const SupportEval<S> e = A.evaluate(Vector3<S>(-m));
+    const Vector3<S> to_anchor = anchor - e.point;
+    return At{theta,
+              e.value + m.dot(anchor) + offset,
+              m1.dot(to_anchor),
+              -curl * b.circle(theta).dot(to_anchor) + m1.dot(e.hessian * m1),
+              m,
+              e.point};
+  };
+  const S eps = std::numeric_limits<S>::epsilon();
+  At p = at(theta0);
+  for (int it = 0; it < kCircleNewtonIterations; ++it) {
+    const S scale = std::abs(p.f2) + std::abs(p.f) + std::numeric_limits<S>::min();
+    S step = -p.f1 / std::max(p.f2, S(1e-8) * scale);
+    if (!std::isfinite(step)) return std::nullopt;
+    step = std::max(S(-0.5), std::min(S(0.5), step));
+    const S noise = S(16) * eps * (p.a.norm() + anchor.norm() + std::abs(p.f));
+    bool moved = false;
+    for (S alpha = S(1); alpha > S(1e-6); alpha *= S(0.5)) {
+      const At q = at(p.theta + alpha * step);
+      if (q.f <= p.f + S(1e-4) * alpha * step * p.f1 || (q.f <= p.f + noise && alpha == S(1))) {
+        moved = q.theta != p.theta;
+        p = q;
+        break;
+      }
+    }
+    if (!moved || std::abs(step) < S(64) * eps) break;
+  }
+  if (!(p.f < S(0)) || !p.a.allFinite()) return std::nullopt;
+  const Vector3<S> v = -p.m;
+  const Vector3<S> on = p.a - p.f * v;  // the gap −F along v
+  if (!(std::abs((on - b.t).dot(b.z)) <= b.h)) return std::nullopt;
+  return PairHit<S>{-p.f, on, p.a, v, -1};
+}
+
+/// A flat end's candidate (the cylinder's disc on `side`, ±1, or the cone's base, −1): the
+/// shape's support point along the end's inward normal and its projection into the end's plane
+/// (a candidate where it lands on the disc: onEnd).
+template <typename S>
+PairHit<S> endCandidate(const Pair<S>& pair, const Round<S>& b, S side) {
+  const Vector3<S> n = side * b.z;
+  const Vector3<S> a = shapeSupport(pair, Vector3<S>(-n));
+  const S d = n.dot(a) - n.dot(b.t) - b.h;
+  return PairHit<S>{d, Vector3<S>(a - d * n), a, Vector3<S>(-n), -1};
+}
+
+template <typename S>
+bool onEnd(const Round<S>& b, const PairHit<S>& end) {
+  const Vector3<S> off_axis = (end.on_other - b.t) - (end.on_other - b.t).dot(b.z) * b.z;
+  return off_axis.norm() <= b.r;
+}
+
+/// Newton steps on the facing rim at most before a separating direction is found: apart, it
+/// converges in a few; where the shapes overlap there is none to find.
+constexpr int kGuessSteps = 10;
+
+/// The exact answer for separated shapes from the features that face the shape, picked by the
+/// direction w from B's centre towards the shape's, tried before any GJK: the flat end facing
+/// it, the side (the cylinder's: its axis against the shape by Newton, feature_newton.h, moved
+/// out by r; the cone's: the search over its normals from w's angle), the rim facing it (Newton
+/// on its disc), the cone's apex (the point solver, cold), in the order w suggests. Nothing
+/// unless one is certified; a miss costs the features tried, then GJK starts as before
+/// (docs/math.md → "Shape pairs"). A point of the shape found inside B, or of B's rim inside
+/// the shape, proves an overlap: then nothing more is tried (the rim's Newton, finding no
+/// separating direction, would run long).
+template <typename S>
+std::optional<PairHit<S>> facingFeatures(const Pair<S>& pair, const Round<S>& b) {
+  const Vector3<S> w = (pair.X_WS->translation() - b.t).normalized();
+  if (!w.allFinite()) return std::nullopt;
+  auto support = [&b](const Vector3<S>& x) { return b.support(x); };
+  Candidates<S, decltype(support)> candidates(pair, support, std::hypot(b.r, b.h));
+  auto inside = [&b](const PairHit<S>& hit) { return b.outside(hit.on_shape) <= S(0); };
+  // The end whose outward normal side·z points towards the shape; the cone has its base only.
+  const S side = w.dot(b.z) < S(0) ? S(-1) : S(1);
+  const bool end_faces = !(b.cone && side > S(0));
+  const S theta0 = std::atan2(w.dot(b.e2), w.dot(b.e1));
+  enum class Tried { kCertified, kOverlap, kNot };
+  auto end = [&] {
+    if (!end_faces) return Tried::kNot;
+    const PairHit<S> hit = endCandidate(pair, b, side);
+    if (inside(hit)) return Tried::kOverlap;
+    return onEnd(b, hit) && candidates.offer(hit) ? Tried::kCertified : Tried::kNot;
+  };
+  auto lateral = [&] {
+    std::optional<PairHit<S>> hit;
+    if (b.cone) {
+      hit = sideNewton(pair, b, theta0);
+    } else if (const std::optional<PairHit<S>> axis =
+                   segmentInteriorApart(*pair.shape, *pair.X_WS, Vector3<S>(b.t - b.h * b.z),
+                                        Vector3<S>(b.t + b.h * b.z), Vector3<S>(-w))) {
+      hit = PairHit<S>{axis->distance - b.r, Vector3<S>(axis->on_other - b.r * axis->normal),
+                       axis->on_shape, axis->normal, -1};
+    }
+    if (!hit) return Tried::kNot;
+    if (inside(*hit)) return Tried::kOverlap;
+    return candidates.offer(*hit) ? Tried::kCertified : Tried::kNot;
+  };
+  auto rim = [&] {
+    if (!end_faces) return Tried::kNot;
+    const Vector3<S> centre = b.t + side * b.h * b.z;
+    const Vector3<S> rim_point = centre + b.r * b.circle(theta0);
+    const fcl::Transform3<S> X_SW = pair.X_WS->inverse(Eigen::Isometry);
+    if (pair.shape->contains(Vector3<S>(X_SW * rim_point))) return Tried::kOverlap;
+    // From the middle of the rim's normals at θ0 (between the end's and the side's).
+    const Vector3<S> normal = side * b.z + b.sideNormal(theta0);
+    const std::optional<PairHit<S>> rough =
+        discApart(*pair.shape, *pair.X_WS, centre, b.z, b.r, Vector3<S>(-normal), kGuessSteps);
+    if (!rough) return Tried::kNot;
+    // A separating direction found: Newton from there to its end (a step or two where the
+    // limited run had converged), so the answer is as exact as the other features'.
+    const std::optional<PairHit<S>> hit =
+        discApart(*pair.shape, *pair.X_WS, centre, b.z, b.r, rough->normal);
+    return hit && candidates.offer(*hit) ? Tried::kCertified : Tried::kNot;
+  };
+  auto apex = [&] {
+    if (!b.cone) return Tried::kNot;
+    const std::optional<PairHit<S>> hit =
+        pointApart(*pair.shape, *pair.X_WS, Vector3<S>(b.t + b.h * b.z), noHint<S>());
+    if (hit && !(hit->distance > S(0))) return Tried::kOverlap;
+    return hit && candidates.offer(*hit) ? Tried::kCertified : Tried::kNot;
+  };
+  // The order w suggests: the apex first where it supports B along w; the side first where
+  // w's axial part is nearer the side normal's (at w's angle) than the ends'; else the end and
+  // its rim.
+  const S side_z = b.sideNormal(theta0).dot(b.z);  // 0 for the cylinder
+  const S wz = w.dot(b.z);
+  const bool side_first =
+      wz > S(0.5) * (side_z - S(1)) && (b.cone || wz < S(0.5) * (side_z + S(1)));
+  enum Feature { kEnd, kSide, kRim, kApex };
+  std::array<Feature, 4> order = {kEnd, kRim, kSide, kApex};
+  if (b.apexSupports(w)) {
+    order = {kApex, kSide, kEnd, kRim};
+  } else if (side_first) {
+    order = {kSide, kEnd, kRim, kApex};
+  }
+  for (const Feature feature : order) {
+    const Tried t = feature == kEnd    ? end()
+                    : feature == kSide ? lateral()
+                    : feature == kRim  ? rim()
+                                       : apex();
+    if (t == Tried::kCertified) return candidates.certified();
+    if (t == Tried::kOverlap) return std::nullopt;
+  }
+  return std::nullopt;
+}
+
 /// The exact answer for separated shapes, if a candidate among the features within `margin` of
 /// the start's witness (GJK's or libccd's: candidates.h) is certified.
 template <typename S>
@@ -137,35 +325,15 @@ std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Round<S>& b,
   for (S side : {S(1), S(-1)}) {
     if (b.cone && side > S(0)) continue;
     if (std::abs(z0 - side * b.h) > margin) continue;
-    const Vector3<S> n = side * b.z;
-    const Vector3<S> a = shapeSupport(pair, Vector3<S>(-n));
-    const S d = n.dot(a) - n.dot(b.t) - b.h;
-    const Vector3<S> on = a - d * n;
-    const Vector3<S> off_axis = (on - b.t) - (on - b.t).dot(b.z) * b.z;
-    if (off_axis.norm() <= b.r && candidates.offer({d, on, a, Vector3<S>(-n), -1}))
-      return candidates.certified();
+    const PairHit<S> end = endCandidate(pair, b, side);
+    if (onEnd(b, end) && candidates.offer(end)) return candidates.certified();
   }
-  // The side, over its outward normals m(θ) (the direction to the other shape is v = −m):
-  // F(θ) = h_A(−m) + h_B(m), with h_B(m) = m·t + r for the cylinder (m ⊥ z) and m·apex for the
-  // cone (m ∝ 2h·c(θ) + r·z), so F' = m'·(t − a) or m'·(apex − a), a = the support point.
+  // The side, near the start's witness.
   const S lateral_gap =
       b.cone ? std::abs(rho0 - b.r * (b.h - z0) / (2 * b.h)) : std::abs(rho0 - b.r);
   if (lateral_gap <= 2 * margin && std::abs(z0) <= b.h + margin) {
-    struct Side {
-      Vector3<S> v, a;
-    };
-    auto at = [&](S theta) {
-      const Vector3<S> m = b.sideNormal(theta);
-      const Vector3<S> a = shapeSupport(pair, Vector3<S>(-m));
-      const S derivative = b.sideNormalDerivative(theta).dot(b.sideAnchor() - a);
-      return Sample<S, Side>{theta, derivative, {Vector3<S>(-m), a}};
-    };
-    if (const std::optional<Side> s = minimumAround<S, Side>(at, theta0)) {
-      const S gap = -b.support(Vector3<S>(-s->v)) - s->v.dot(s->a);  // −h_B(−v) − h_A(v)
-      const Vector3<S> on = s->a + gap * s->v;
-      if (std::abs((on - b.t).dot(b.z)) <= b.h && candidates.offer({gap, on, s->a, s->v, -1}))
-        return candidates.certified();
-    }
+    const std::optional<PairHit<S>> side = sideHit(pair, b, theta0);
+    if (side && candidates.offer(*side)) return candidates.certified();
   }
   // The rims: the cylinder's two, the cone's base; the apex.
   for (S side : {S(1), S(-1)}) {
@@ -285,6 +453,7 @@ template <typename S>
 std::optional<PairHit<S>> roundHit(const Pair<S>& pair) {
   const std::optional<Round<S>> b = roundOf(pair);
   if (!b) return std::nullopt;
+  if (const std::optional<PairHit<S>> hit = facingFeatures(pair, *b)) return hit;
   const S extent = std::hypot(b->r, b->h);
   return exactPair(
       pair, extent, [&](const Vector3<S>& u) { return b->supportPoint(u); },
