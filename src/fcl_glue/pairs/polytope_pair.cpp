@@ -409,6 +409,25 @@ std::optional<PairHit<S>> nearestVertexFeatures(const Pair<S>& pair, const Polyt
   return candidates.certified();
 }
 
+/// The radius of a ball about the superellipsoid's centre that it holds: its exponents are at
+/// most 2, so it holds the octahedron of its axes' ends, |x|/a + |y|/b + |z|/c ≤ 1, whose inscribed
+/// radius is 1/|(1/a, 1/b, 1/c)|.
+template <typename S>
+S inscribedRadius(const Superellipsoid<S>& shape) {
+  return S(1) / shape.radii().cwiseInverse().norm();
+}
+
+/// The least of v·d over an edge's arc of directions v(θ) = −cos θ·c1 − sin θ·c2, θ ∈ [0, angle]:
+/// −(p cos θ + q sin θ) with p = c1·d, q = c2·d, least at an end or where θ = atan2(q, p).
+template <typename S>
+S arcLowerBound(const EdgeArc<S>& arc, const Vector3<S>& d) {
+  const S p = arc.c1.dot(d), q = arc.c2.dot(d);
+  S low = std::min(-p, -(std::cos(arc.angle) * p + std::sin(arc.angle) * q));
+  const S peak = std::atan2(q, p);
+  if (peak >= S(0) && peak <= arc.angle) low = std::min(low, -std::hypot(p, q));
+  return low;
+}
+
 /// The world direction v mirrored across the superellipsoid's k-th coordinate plane.
 template <typename S>
 Vector3<S> mirrored(const Pair<S>& pair, const Vector3<S>& v, int k) {
@@ -452,8 +471,14 @@ PairHit<S> overlap(const Pair<S>& pair, const Polytope<S>& p, const PairHit<S>& 
     }
   }
   if (depth.certified(outside, tolerance)) return depth.best();
+  const S inscribed = inscribedRadius(*pair.shape);
   for (const Edge& e : p.edges()) {
     if (const std::optional<EdgeArc<S>> arc = arcOf(p, e, centroid)) {
+      // On the arc F(v) = h_A(v) − v·w0 ≥ v·(c − w0) + ρ (A holds the ball of radius ρ about its
+      // centre c): an arc whose bound is not below the best F cannot improve it.
+      if (arcLowerBound(*arc, Vector3<S>(pair.X_WS->translation() - p.vertices[e.i])) + inscribed >=
+          -depth.best().distance)
+        continue;
       depth.offerEdgeArc(p.vertices[e.i], arc->c1, arc->c2, arc->angle);
     } else {
       depth.offerEdge(p.vertices[e.i], p.vertices[e.j]);
