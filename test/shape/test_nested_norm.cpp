@@ -1,7 +1,8 @@
 // NestedNorm::evaluate's value, gradient and Hessian against the closed forms in long double
 // with pow(), for the gauge and the support function, over ratios of the arguments from 1 to
 // 1e-4 (evaluate takes its powers from exp2 and log2: docs/math.md → "Support function and the
-// dual shape").
+// dual shape"). At subnormal exponents (2/ε infinite) it gives the box's max norm, also where
+// two coordinates tie.
 //
 // The duality the Exact solver relies on when it hands a primal evaluation to the dual
 // formulation (docs/math.md → "The Exact solver"): at a surface point N with unit normal n, the
@@ -81,6 +82,37 @@ TEST(NestedNormTest, EvaluateMatchesTheLongDoubleNorm) {
   EXPECT_LE(worst_hessian, 1e-13);
   std::printf("evaluate: worst value %.2f ulps, gradient %.2f ulps, Hessian %.3g (relative)\n",
               worst_value / ulp, worst_gradient / ulp, worst_hessian);
+}
+
+// Subnormal exponents make the gauge's powers 2/ε infinite: the gauge is then the box's max
+// norm, max_i |w_i|/a_i. Where two scaled coordinates are equal the ratio t is 1 and the powers'
+// p·log2 t is ∞·0 (NaN, had it been formed: a fuzz find); where all three are, the second
+// level's ratio is 1 by rounding but below 1 by its logarithm, and the two had weighed both of
+// its arguments fully (a gradient twice too long). Ground truth: the max norm, by construction,
+// and Euler's identity ∇N·w = N for its gradient (a subgradient of the max norm there). The
+// Hessian is unbounded at p = ∞ and is not checked.
+template <typename S>
+void expectMaxNormAtTies(S eps) {
+  const Vector3<S> radii(S(1.5), S(1), S(2));
+  const Superellipsoid<S> shape(radii, eps, eps);
+  const detail::NestedNorm<S> gauge = detail::NestedNorm<S>::gauge(shape);
+  ASSERT_FALSE(std::isfinite(gauge.p1)) << "ε = " << eps << " should make 2/ε infinite";
+  for (const Vector3<S>& w : {Vector3<S>(S(1.5), S(1), S(2)), Vector3<S>(S(1.5), S(1), S(1)),
+                              Vector3<S>(S(0.75), S(0.5), S(2)), Vector3<S>(S(3), S(1), S(2))}) {
+    const S expected = w.cwiseQuotient(radii).maxCoeff();
+    const detail::NestedNormEval<S> e = gauge.evaluate(w, true);
+    const S tolerance = S(4) * std::numeric_limits<S>::epsilon() * expected;
+    EXPECT_NEAR(e.value, expected, tolerance) << "at " << w.transpose() << ", ε = " << eps;
+    EXPECT_NEAR(shape.gauge(w), expected, tolerance) << "at " << w.transpose();
+    EXPECT_TRUE(e.gradient.allFinite()) << "gradient at " << w.transpose();
+    // The gradient is a subgradient of the max norm: it reproduces the value (Euler).
+    EXPECT_NEAR(e.gradient.dot(w), expected, tolerance) << "at " << w.transpose();
+  }
+}
+
+TEST(NestedNormTest, SubnormalExponentsGiveTheMaxNormAtTies) {
+  expectMaxNormAtTies<double>(1e-323);
+  expectMaxNormAtTies<float>(3e-45f);
 }
 
 TEST(NestedNormTest, DualHessianIsTheInverseShapeOperator) {

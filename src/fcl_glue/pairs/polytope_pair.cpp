@@ -223,6 +223,15 @@ const Topology& sharedTopology(bool box) {
   return box ? cube : triangle;
 }
 
+/// A convex's face list, its loops and the topology finish() built from them.
+struct ConvexTopology {
+  bool reusable = false;
+  std::vector<int> list;
+  int face_count = -1;
+  std::vector<std::vector<int>> loops;
+  Topology topology;
+};
+
 /// Normals and extent for p with the shared topology t built from the same loops: the same
 /// arithmetic as finish(), so the same polytope. False where t does not fit p (a face of p is
 /// degenerate, or flat where t's are not or the reverse); then finish() builds p's own.
@@ -275,15 +284,31 @@ std::optional<Polytope<S>> polytopeOf(const Pair<S>& pair) {
     if (!finishShared(p, sharedTopology(true), loopsOf(true))) finish(p, loopsOf(true));
   } else if (const auto* convex = otherAs<fcl::Convex<S>>(pair, fcl::GEOM_CONVEX)) {
     for (const Vector3<S>& v : convex->getVertices()) p.vertices.push_back(X * v);
+    // The last convex's topology, per thread: a simulation asks about the same convex shapes
+    // again and again, and building the edges costs more than the query's support points. It
+    // is reused where the face list is the same, finish() left every face in, and finishShared
+    // finds it fits these vertices (no face degenerate, the same flatness).
+    thread_local ConvexTopology cache;
     const std::vector<int>& list = convex->getFaces();
-    std::vector<std::vector<int>> loops;
-    for (std::size_t k = 0, f = 0;
-         f < static_cast<std::size_t>(convex->getFaceCount()) && k < list.size(); ++f) {
-      const int n = list[k];
-      loops.emplace_back(list.begin() + k + 1, list.begin() + k + 1 + n);
-      k += n + 1;
+    const bool same =
+        cache.reusable && cache.face_count == convex->getFaceCount() && cache.list == list;
+    if (!same || !finishShared(p, cache.topology, cache.loops)) {
+      std::vector<std::vector<int>> loops;
+      for (std::size_t k = 0, f = 0;
+           f < static_cast<std::size_t>(convex->getFaceCount()) && k < list.size(); ++f) {
+        const int n = list[k];
+        loops.emplace_back(list.begin() + k + 1, list.begin() + k + 1 + n);
+        k += n + 1;
+      }
+      finish(p, loops);
+      cache.reusable = p.own.faces.size() == loops.size() * (p.own.flat ? 2 : 1);
+      if (cache.reusable) {
+        cache.list = list;
+        cache.face_count = convex->getFaceCount();
+        cache.loops = std::move(loops);
+        cache.topology = p.own;
+      }
     }
-    finish(p, loops);
   } else if (const auto* t = otherAs<fcl::TriangleP<S>>(pair, fcl::GEOM_TRIANGLE)) {
     p.vertices = {X * t->a, X * t->b, X * t->c};
     if (!finishShared(p, sharedTopology(false), loopsOf(false))) finish(p, loopsOf(false));
