@@ -63,8 +63,10 @@ inline PowersLog2<S> pnorm2PowersLog2(bool a_is_max, S ratio, S log2_ratio, S p,
     // q carries too few digits and pow() gives t^(p−1) instead (docs/hardening.md →
     // "Findings", 4 and 10). For p = ∞ a q of 0 says t < 1, so t^(p−1) is 0 too, also where t
     // rounded to 1 (pow(1, ∞) = 1 would weigh that argument fully beside the other).
-    const S below = std::isinf(p) ? S(0) : std::pow(ratio, p - S(1));
-    pow_lo = (q >= std::numeric_limits<S>::min() ? q / ratio : below) * pow_m;
+    pow_lo = (q >= std::numeric_limits<S>::min() ? q / ratio
+              : std::isinf(p)                    ? S(0)
+                                                 : std::pow(ratio, p - S(1))) *
+             pow_m;
   }
   return a_is_max ? PowersLog2<S>{pow_m, pow_lo, q, log2_one_plus_q}
                   : PowersLog2<S>{pow_lo, pow_m, q, log2_one_plus_q};
