@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <random>
@@ -24,6 +25,7 @@
 #include "fcl_superellipsoid/point_distance.h"
 #include "pair_construction.h"
 #include "polytope_depth.h"
+#include "round_depth.h"
 
 namespace fcl_superellipsoid {
 namespace detail {
@@ -31,6 +33,11 @@ namespace {
 
 using test::LD;
 using test::V3;
+
+/// The library's shape of a test shape (rounded to double).
+Superellipsoidd superellipsoidOf(const test::RandomShape& s) {
+  return Superellipsoidd(Vector3<double>(s.radii.cast<double>()), double(s.e1), double(s.e2));
+}
 
 /// 44 start directions: both frames' axes and a 32-direction Fibonacci lattice.
 std::vector<Vector3<double>> startDirections(const fcl::Transform3d& X_A,
@@ -64,8 +71,7 @@ TEST(RollingCertificate, CertifiesOnlyTheGlobalOverlap) {
     const LD smaller = std::min(c.shape.radii.minCoeff(), partner.radii.minCoeff());
     const fcl::Transform3d X_WB = test::placePartner(c, -LD(depth(rng)) * smaller, b.x, b.n, rng);
 
-    const Superellipsoidd shape(Vector3<double>(c.shape.radii.cast<double>()), double(c.shape.e1),
-                                double(c.shape.e2));
+    const Superellipsoidd shape = superellipsoidOf(c.shape);
     const SupportMap<double> A(shape, c.X_WA);
     const Superellipsoidd other_se(Vector3<double>(partner.radii.cast<double>()),
                                    double(partner.e1), double(partner.e2));
@@ -114,8 +120,7 @@ TEST(RollingCertificate, FlatPartnersCertifyOnlyTheGlobalOverlap) {
   for (int trial = 0; trial < 50; ++trial) {
     const LD scale = LD(size(rng));
     const test::Construction c = test::constructShape(rng, scale, 0.3, 1.0);
-    const Superellipsoidd shape(Vector3<double>(c.shape.radii.cast<double>()), double(c.shape.e1),
-                                double(c.shape.e2));
+    const Superellipsoidd shape = superellipsoidOf(c.shape);
     const SupportMap<double> A(shape, c.X_WA);
     const double rho = rollingRadius(shape);
     for (const test::FlatPartner& partner : test::flatPartners(rng, scale)) {
@@ -162,6 +167,195 @@ TEST(RollingCertificate, FlatPartnersCertifyOnlyTheGlobalOverlap) {
             << " accepted without the radius that are not the depth\n";
   EXPECT_GT(certified, 20);
   EXPECT_GT(wrong_without_radius, 0);
+}
+
+// The local ball (localBallCertified): the ball of radius F(v) tangent to the superellipsoid at
+// its support point a along v, centred at b = a − F·v, lies inside it. Superellipsoids of every
+// exponent in [0.1, 1.9] (most creased, where the rolling radius is 0) overlap boxes, cylinders and
+// cones by 0.0001 to 0.3 × its smallest radius. Candidates v: the construction's normal and small
+// turns of it, 32 lattice directions, and the local minima of F a long-double pattern search
+// reaches from the best lattice directions. F(v) is computed with the other shape's support
+// function in long double; b must lie in the other shape (to within the pairs' 1e-12 × size); where
+// the certificate accepts, F(v) must be the depth by enumeration (polytope_depth.h, round_depth.h).
+// It must accept some candidates, and some candidates with b inside that are not the depth must
+// exist (b's position alone certifies nothing). Most of those are refused because the ball's
+// centre crosses a mirror plane; the ball's own test is LocalBallLiesInsideTheShape.
+TEST(RollingCertificate, LocalBallCertifiesOnlyTheGlobalOverlap) {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> size(0.5, 5.0), log_gap(std::log(1e-4), std::log(0.3)),
+      turn(-1.0, 1.0);
+  int certified = 0, creased_certified = 0, wrong_without_ball = 0, tried = 0;
+  double worst = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    const LD scale = LD(size(rng));
+    const test::Construction c = test::constructShape(rng, scale, 0.1, 1.9);
+    const Superellipsoidd shape = superellipsoidOf(c.shape);
+    const SupportMap<double> A(shape, c.X_WA);
+    const bool creased = c.shape.e1 > 1 || c.shape.e2 > 1;
+    const std::function<LD(const V3&)> h_a = test::supportFunction(shape, c.X_WA);
+    for (const test::FlatPartner& partner : test::flatPartners(rng, scale)) {
+      const std::string name = partner.name;
+      const bool box = name.rfind("box", 0) == 0, cylinder = name.rfind("cylinder", 0) == 0,
+                 cone = name.rfind("cone", 0) == 0;
+      if (!box && !cylinder && !cone) continue;
+      const LD d = -LD(std::exp(log_gap(rng))) * c.shape.radii.minCoeff();
+      const fcl::Transform3d X_WB = test::placePartner(c, d, partner.b_L, partner.m_L, rng);
+      const fcl::CollisionGeometryd& g = *partner.geometry;
+      const double depth = double(box ? test::polytopeDepth(h_a, test::polytopeVertices(g, X_WB))
+                                      : test::roundDepth(h_a, g, X_WB));
+      if (!(depth > 0)) continue;  // a thin shape pierced through: not an overlap here
+      const std::function<LD(const V3&)> h_b = test::supportFunction(g, X_WB);
+      auto F = [&](const V3& v) { return h_a(v) + h_b(V3(-v)); };
+      // How far a point lies beyond the other shape's bounding planes or surfaces (its frame).
+      auto outside = [&](const Vector3<double>& x) {
+        const Vector3<double> p = X_WB.linear().transpose() * (x - X_WB.translation());
+        if (const auto* b = dynamic_cast<const fcl::Boxd*>(&g)) {
+          return (p.cwiseAbs() - b->side / 2).maxCoeff();
+        }
+        const double radial = std::hypot(p[0], p[1]);
+        if (const auto* b = dynamic_cast<const fcl::Cylinderd*>(&g)) {
+          return std::max(radial - b->radius, std::abs(p[2]) - b->lz / 2);
+        }
+        const auto& k = dynamic_cast<const fcl::Coned&>(g);
+        const double h = k.lz / 2, slant = std::hypot(k.lz, k.radius);
+        return std::max(-h - p[2], (radial - k.radius * (h - p[2]) / k.lz) * k.lz / slant);
+      };
+      const double size_max = std::max(double(c.shape.radii.maxCoeff()), g.aabb_radius);
+      const double tolerance = kRollingOutsideTolerance * size_max;
+
+      std::vector<V3> candidates = {c.u};
+      for (double angle : {1e-9, 1e-6, 1e-4, 1e-2}) {
+        const V3 t = c.u.unitOrthogonal(), w = c.u.cross(t);
+        const LD phi = LD(M_PI * turn(rng));
+        candidates.push_back(
+            (c.u + LD(angle) * (std::cos(phi) * t + std::sin(phi) * w)).normalized());
+      }
+      // The other shape's face, disc and side normals (where b = a − F·v lands on that face).
+      const test::M3 R_B = X_WB.linear().cast<LD>();
+      for (int i = 0; i < 3 && box; ++i) {
+        candidates.push_back(V3(R_B.col(i)));
+        candidates.push_back(V3(-R_B.col(i)));
+      }
+      if (cylinder || cone) {
+        const auto& r = dynamic_cast<const fcl::Cylinderd*>(&g);
+        const auto& k = dynamic_cast<const fcl::Coned*>(&g);
+        const LD radius = r ? r->radius : k->radius, length = r ? r->lz : k->lz;
+        candidates.push_back(V3(R_B.col(2)));
+        if (cylinder) candidates.push_back(V3(-R_B.col(2)));
+        for (int j = 0; j < 8; ++j) {
+          const LD t = LD(M_PI / 4) * j;
+          const V3 radial = std::cos(t) * R_B.col(0) + std::sin(t) * R_B.col(1);
+          // −v is the side's outward normal: v points into the other shape.
+          candidates.push_back(
+              cylinder ? V3(-radial) : V3(-(length * radial + radius * R_B.col(2)).normalized()));
+        }
+      }
+      std::vector<std::pair<LD, V3>> lattice;
+      for (const V3& v : test::fibonacciLattice(32)) {
+        candidates.push_back(v);
+        lattice.push_back({F(v), v});
+      }
+      std::sort(lattice.begin(), lattice.end(),
+                [](const auto& x, const auto& y) { return x.first < y.first; });
+      for (int k = 0; k < 2; ++k) {
+        V3 v = lattice[std::size_t(k)].second;
+        LD f = lattice[std::size_t(k)].first;
+        test::patternSearch(F, v, f, 12, LD(1e-11));
+        candidates.push_back(v);
+      }
+
+      for (const V3& u : candidates) {
+        const Vector3<double> v = u.cast<double>().normalized();
+        const Vector3<double> a = A.evaluate(v).point;
+        const double f = double(v.cast<LD>().dot(a.cast<LD>()) + h_b(V3(-v.cast<LD>())));
+        const double out = outside(Vector3<double>(a - f * v));
+        if (!(f >= 0) || !(out <= tolerance)) continue;
+        ++tried;
+        const bool is_depth = f <= depth + 1e-9 * size_max;
+        if (!is_depth) ++wrong_without_ball;
+        if (!localBallCertified(shape, c.X_WA, v, a, f, tolerance - std::max(out, 0.0))) continue;
+        ++certified;
+        if (creased) ++creased_certified;
+        worst = std::max(worst, (f - depth) / size_max);
+        EXPECT_TRUE(is_depth) << "trial " << trial << ", " << name << ": certified F " << f
+                              << ", depth " << depth << ", exponents " << double(c.shape.e1) << ", "
+                              << double(c.shape.e2);
+      }
+    }
+  }
+  std::cout << "local ball: " << tried << " candidates with b inside, " << certified
+            << " certified (" << creased_certified << " on creased shapes; worst " << worst
+            << " × size above the depth), " << wrong_without_ball << " not the depth\n";
+  EXPECT_GT(certified, 100);
+  EXPECT_GT(creased_certified, 50);
+  EXPECT_GT(wrong_without_ball, 20);
+}
+
+// The local ball's claim on its own: where localBallCertified accepts the ball of radius f
+// tangent at a surface point a (outward normal v), centred at a − f·v, every point of it is
+// inside the superellipsoid. Exponents in [0.1, 1.9], radii from 0.001 to 0.6 × the smallest
+// semi-axis. Ground truth in long double from the implicit function
+// G = ((|x/a1|^(2/ε1) + |y/a2|^(2/ε1))^(ε1/ε2) + |z/a3|^(2/ε2)) (the construction's point and
+// normal, pair_construction.h): its largest value on the ball's sphere, by a 200-direction lattice
+// and a pattern search from the best three, must stay at most 1 (to 1e-9). The balls it refuses
+// include some the lattice alone finds poking out (the bound has teeth) and some that fit.
+TEST(RollingCertificate, LocalBallLiesInsideTheShape) {
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> size(0.5, 5.0);
+  int accepted = 0, refused_outside = 0, refused_inside = 0;
+  LD worst = 0;
+  const std::vector<V3> lattice = test::fibonacciLattice(200);
+  for (int trial = 0; trial < 40; ++trial) {
+    const LD scale = LD(size(rng));
+    const test::Construction c = test::constructShape(rng, scale, 0.1, 1.9);
+    const test::RandomShape& s = c.shape;
+    const Superellipsoidd shape = superellipsoidOf(s);
+    const test::M3 R = c.X_WA.linear().cast<LD>();
+    const V3 t = c.X_WA.translation().cast<LD>();
+    auto G = [&](const V3& p_W) {
+      const V3 p = R.transpose() * (p_W - t);
+      const LD xy = std::pow(std::abs(p[0] / s.radii[0]), 2 / s.e1) +
+                    std::pow(std::abs(p[1] / s.radii[1]), 2 / s.e1);
+      return std::pow(xy, s.e1 / s.e2) + std::pow(std::abs(p[2] / s.radii[2]), 2 / s.e2);
+    };
+    for (int point = 0; point < 20; ++point) {
+      const test::SurfacePoint q = test::randomSurfacePoint(s, rng);
+      const V3 a = R * q.x + t, n = R * q.n;
+      for (double k : {0.001, 0.01, 0.05, 0.1, 0.3, 0.6}) {
+        const LD f = LD(k) * s.radii.minCoeff();
+        const V3 centre = a - f * n;
+        auto on_sphere = [&](const V3& w) { return G(V3(centre + f * w.normalized())); };
+        std::vector<std::pair<LD, V3>> samples;
+        for (const V3& w : lattice) samples.push_back({on_sphere(w), w});
+        std::partial_sort(samples.begin(), samples.begin() + 3, samples.end(),
+                          [](const auto& x, const auto& y) { return x.first > y.first; });
+        const bool ok = localBallCertified(shape, c.X_WA, Vector3<double>(n.cast<double>()),
+                                           Vector3<double>(a.cast<double>()), double(f),
+                                           1e-12 * double(s.radii.maxCoeff()));
+        if (!ok) {
+          ++(samples[0].first > 1 + 1e-9 ? refused_outside : refused_inside);
+          continue;
+        }
+        ++accepted;
+        LD highest = samples[0].first;
+        for (int j = 0; j < 3; ++j) {
+          V3 w = samples[std::size_t(j)].second;
+          LD minus = -samples[std::size_t(j)].first;
+          test::patternSearch([&](const V3& x) { return -on_sphere(x); }, w, minus, 12, LD(1e-9));
+          highest = std::max(highest, -minus);
+        }
+        worst = std::max(worst, highest - 1);
+        EXPECT_LE(highest, 1 + 1e-9)
+            << "trial " << trial << ", exponents " << double(s.e1) << ", " << double(s.e2)
+            << ", radius " << k << " × the smallest semi-axis";
+      }
+    }
+  }
+  std::cout << "local ball: " << accepted << " balls accepted (largest G on them 1 + "
+            << double(worst) << "), " << refused_outside << " refused that poke out, "
+            << refused_inside << " refused that fit by the lattice\n";
+  EXPECT_GT(accepted, 500);
+  EXPECT_GT(refused_outside, 100);
 }
 
 // The ellipsoid's rolling radius c²/a is its smallest principal radius of curvature: on a grid

@@ -471,7 +471,8 @@ PairHit<S> overlap(const Pair<S>& pair, const Polytope<S>& p, const PairHit<S>& 
   depth.offerDirection(start.normal);
   for (const Vector3<S>& n : p.normals) depth.offerDirection(Vector3<S>(-n));
   // Where the superellipsoid's rolling ball certifies the best so far (rolling_certificate.h),
-  // the rest is not needed: after the faces, and again after the vertices.
+  // the rest is not needed: after the faces, the vertices' point queries, each descent and each
+  // edge.
   const S tolerance = S(kRollingOutsideTolerance) * std::max(pair.shape->size(), p.extent);
   auto outside = [&p](const Vector3<S>& x) { return p.outside(x); };
   if (depth.certified(outside, tolerance)) return depth.best();
@@ -482,20 +483,25 @@ PairHit<S> overlap(const Pair<S>& pair, const Polytope<S>& p, const PairHit<S>& 
   // Vertices outside are left to the other candidates, to keep the cost down (a choice, not a
   // proof: docs/math.md).
   const auto escapes = depth.offerPoints(p.vertices);
+  if (depth.certified(outside, tolerance)) return depth.best();
+  // Each descent, and each edge's arc, may give a candidate the balls certify; then the rest is
+  // not needed.
   for (std::size_t i = 0; i < p.vertices.size(); ++i) {
     if (!(escapes[i].distance < S(0))) continue;
     const SupportMap<S> vertex = SupportMap<S>::ofPoint(p.vertices[i]);
     depth.offerDescent(vertex, Vector3<S>(centroid - p.vertices[i]));
+    if (depth.certified(outside, tolerance)) return depth.best();
     // Where the vertex does not support the polytope along its own escape direction, F there is
     // above h_A(v) − v·w, whose other local minima can be F's: near a mirror plane of the
     // superellipsoid they mirror the escape direction across it (a rounded shape's overlap with
     // a triangle was 0.0047 × size too deep: RoundedOverlapsAgainstTheEnumeratedDepth).
     if (escapes[i].f > -escapes[i].distance + tolerance) {
-      for (int k = 0; k < 3; ++k)
+      for (int k = 0; k < 3; ++k) {
         depth.offerDescent(vertex, mirrored(pair, escapes[i].direction, k));
+        if (depth.certified(outside, tolerance)) return depth.best();
+      }
     }
   }
-  if (depth.certified(outside, tolerance)) return depth.best();
   const S inscribed = inscribedRadius(*pair.shape);
   for (const Edge& e : p.edges()) {
     if (const std::optional<EdgeArc<S>> arc = arcOf(p, e, centroid)) {
@@ -508,6 +514,7 @@ PairHit<S> overlap(const Pair<S>& pair, const Polytope<S>& p, const PairHit<S>& 
     } else {
       depth.offerEdge(p.vertices[e.i], p.vertices[e.j]);
     }
+    if (depth.certified(outside, tolerance)) return depth.best();
   }
   // In float the candidates alone missed one of FloatAgreesWithDouble's triangle overlaps by
   // 0.022 × size (docs/math.md); float keeps the pattern search.

@@ -21,14 +21,26 @@
 // K's support point along v, and the ball of radius ρ_A inside K that touches there holds the
 // origin's ball of radius F(v) where F(v) ≤ ρ_A: min F = F(v). If b lies δ outside B, that ball's
 // centre moves by δ, and min F ≥ F(v) − δ.
+//
+// The ball need not roll everywhere: the one of radius F(v) tangent to A at a is enough. If it
+// lies in A and b lies in B, K holds the ball of radius F(v) around the origin, and again
+// min F = F(v). Whether it lies in A is the point query's inside certificate
+// (solvers/ball_certificate.h: a bound on the gauge's Hessian over the ball), with the ball's
+// centre b as the query point and a as its nearest surface point; it needs no global curvature
+// bound, so it also holds for creased shapes (an exponent > 1, where ρ_A = 0) wherever the
+// ball keeps away from the creases.
 
 #include <fcl/geometry/shape/ellipsoid.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "fcl_glue/pairs/sphere_newton.h"
 #include "fcl_superellipsoid/superellipsoid.h"
+#include "shape/nested_norm.h"
 #include "shape/symmetric2.h"
+#include "solvers/ball_certificate.h"
+#include "solvers/exact_rules.h"
 
 namespace fcl_superellipsoid {
 namespace detail {
@@ -73,6 +85,38 @@ bool rollingCertified(const Probe<S>& p, S rolling_radius, S tolerance) {
 template <typename S>
 bool rollingCertified(S f, S rolling_radius, S outside, S tolerance) {
   return f >= S(0) && f <= rolling_radius && outside <= tolerance;
+}
+
+/// Whether the ball of radius f tangent to the superellipsoid (posed X_WS) at its support point
+/// a along the unit direction v, centred at a − f·v, lies inside it (above), to within `slack`:
+/// the ball's centre may sit that far from where the normal at a puts it. In the shape's frame,
+/// mirrored into the first octant by the centre's signs (the gauge is mirror-symmetric; a of
+/// another octant is not certified).
+template <typename S>
+bool localBallCertified(const Superellipsoid<S>& shape, const fcl::Transform3<S>& X_WS,
+                        const Vector3<S>& v, const Vector3<S>& a, S f, S slack) {
+  if (f == S(0)) return true;  // a point ball
+  if (!(f > S(0))) return false;
+  const Vector3<S> a_L = X_WS.linear().transpose() * (a - X_WS.translation());
+  const Vector3<S> centre = a_L - f * (X_WS.linear().transpose() * v);
+  Vector3<S> y, nearest;
+  for (int i = 0; i < 3; ++i) {
+    const bool flip = centre[i] < S(0) || (centre[i] == S(0) && a_L[i] < S(0));
+    y[i] = flip ? -centre[i] : centre[i];
+    nearest[i] = flip ? -a_L[i] : a_L[i];
+  }
+  if (!(nearest.minCoeff() >= S(0))) return false;
+  const NestedNorm<S> gauge = NestedNorm<S>::gauge(shape);
+  const Vector3<S> gradient = gauge.gradient(nearest);
+  const S length = gradient.norm();
+  if (!(length > S(0)) || !std::isfinite(length)) return false;
+  // The ball the Hessian bound certifies is centred where the normal at a puts it.
+  const Vector3<S> normal = gradient / length;
+  const S error = (y - (nearest - f * normal)).norm();
+  if (!(error <= slack)) return false;
+  if (hessianBallCertified(gauge, y, nearest, gradient, f, error)) return true;
+  return directionCoverCertified(shape.directionCover(), gauge, y, nearest, normal, gradient, f,
+                                 S(exact_rules::kCoverCapLimit));
 }
 
 }  // namespace detail

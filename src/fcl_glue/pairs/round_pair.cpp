@@ -420,6 +420,12 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
   auto near_axis = [&](const Vector3<S>& v) {
     return (v - v.dot(b.z) * b.z).norm() < S(kNearAxis);
   };
+  // Each descent may give a candidate the balls certify; then the rest is not needed.
+  auto descend = [&](const SupportMap<S>& piece, const Vector3<S>& from, int steps, auto stop) {
+    depth.offerDescent(piece, from, steps, stop);
+    return depth.certified(outside, tolerance);
+  };
+  auto never = [](const Vector3<S>&) { return false; };
   for (std::size_t k = 0; k < sides.size(); ++k) {
     const SupportMap<S> rim = SupportMap<S>::ofCircle(b.t + sides[k] * b.h * b.z, b.z, b.r);
     const auto first = escapes.begin() + std::ptrdiff_t(k * kRimPoints), last = first + kRimPoints;
@@ -431,17 +437,20 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
         int(std::min_element(first, last, [](const auto& x, const auto& y) { return x.f < y.f; }) -
             first);
     for (int i : {deepest, (deepest + 1) % kRimPoints, (deepest + kRimPoints - 1) % kRimPoints}) {
-      depth.offerDescent(rim, first[i].direction, kRimSteps, near_axis);
+      if (descend(rim, first[i].direction, kRimSteps, near_axis)) return depth.best();
     }
     if (std::abs(lowest - deepest) > 1 && std::abs(lowest - deepest) != kRimPoints - 1) {
-      depth.offerDescent(rim, first[lowest].direction, kRimSteps, near_axis);
+      if (descend(rim, first[lowest].direction, kRimSteps, near_axis)) return depth.best();
     }
     const bool rim_supports = b.cone ? !apex_supports : sides[k] * u.dot(b.z) >= S(0);
-    if (rim_supports) depth.offerDescent(rim, best, kRimSteps, near_axis);
+    if (rim_supports && descend(rim, best, kRimSteps, near_axis)) return depth.best();
   }
   if (b.cone) {
     const SupportMap<S> point = SupportMap<S>::ofPoint(apex);
-    if (escapes.back().distance < S(0)) depth.offerDescent(point, Vector3<S>(-b.z));
+    if (escapes.back().distance < S(0) &&
+        descend(point, Vector3<S>(-b.z), kSphereNewtonIterations, never)) {
+      return depth.best();
+    }
     if (apex_supports) depth.offerDescent(point, best);
   }
   return depth.best();
