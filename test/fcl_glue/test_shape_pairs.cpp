@@ -430,6 +430,42 @@ TEST(ShapePairs, EdgeCirclesWithSeveralLocalMinima) {
   }
 }
 
+// The cylinder overlap on which the depth once stopped at a local minimum (1 in 360 of the larger
+// sample of RoundOverlapsAgainstTheEnumeratedDepth, FSE_ROUND_SEED=49: trial 5), replayed
+// exactly. Every start on the rim F's minimum lies on (the rim's deepest points, its least-F
+// point, the side's best) descended to a lower minimum of the rim's f_P outside the rim's region,
+// where F is not f_P; F's minimum is f_P's second local minimum inside the region, that one's
+// mirror image across the side's normals. Our depth was 4.1e-4 × size too deep; now a rim's
+// descent that ends outside its region below the best F also descends from its mirror image.
+TEST(ShapePairs, RimMinimaMirroredAcrossTheSide) {
+  auto transform = [](std::array<double, 9> r, V3 t) {
+    fcl::Transform3d X = fcl::Transform3d::Identity();
+    X.linear() << r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7], r[8];
+    X.translation() = t.cast<double>();
+    return X;
+  };
+  const auto shape = std::make_shared<Superellipsoidd>(0x1.9ed2f19b49a47p+0, 0x1.5102cc15f048ep-2,
+                                                       0x1.26b3011eb401ep+1, 0x1.316043113d8aep-1,
+                                                       0x1.2e9dc2ac3f736p+0);
+  const fcl::Transform3d X_WA =
+      transform({-0x1.07b9e2de3b306p-1, -0x1.56102d09c7214p-1, -0x1.12ed8623a1f42p-1,
+                 -0x1.9f2764c2a1287p-1, 0x1.2a70a7c41dcb4p-1, 0x1.aebfdcbb1778bp-5,
+                 0x1.1c8881b13bcdbp-2, 0x1.d99558fb60e34p-2, -0x1.af15a62d2acf6p-1},
+                V3(-0x1.9f4b3f9a4e07cp-3, -0x1.5561cbdf67decp+0, -0x1.5378f23b580dp-3));
+  const fcl::Transform3d X_WB =
+      transform({0x1.6858c36a5bc24p-2, 0x1.b1e5064f70674p-1, 0x1.9705fd050896p-2,
+                 0x1.17b5eddd5209ap-2, 0x1.40b481b499b07p-2, -0x1.d1b1d74bcde25p-1,
+                 -0x1.ca6405b26923bp-1, 0x1.b6eff9bb7a41fp-2, -0x1.f0bcdeab11d69p-4},
+                V3(-0x1.c9c24014fac95p+0, -0x1.094dbcf72127ep+1, 0x1.31886c1114e9dp+1));
+  const auto cylinder =
+      std::make_shared<fcl::Cylinderd>(0x1.cb44c8a595b24p+0, 0x1.01cd9445b4736p+1);
+  const double size = 2 * shape->radii().maxCoeff();
+  const Answer r = ask<double>(shape, X_WA, cylinder, X_WB, 1e-4 * size);
+  const LD enumerated = roundDepth(supportFunction(*shape, X_WA), *cylinder, X_WB);
+  ASSERT_GT(enumerated, 0);
+  EXPECT_NEAR(r.distance, -double(enumerated), 1e-9 * size);
+}
+
 // Degenerate configurations stay finite and correct: touching, coincident centres, a flat face
 // on a flat face, far apart (1e6 × size).
 TEST(ShapePairs, DegenerateConfigurations) {

@@ -76,16 +76,21 @@ class DepthCandidates {
   /// f_P(v) = h_A(v) + h_P(−v) (sphere_newton.h), then its end offered. Where P supports the
   /// other shape along −v, F is f_P. offerPoints gives a point's f_P minimum over the whole
   /// sphere; where P supports the other shape only in a region elsewhere, f_P may have a second
-  /// local minimum inside that region, which is F's there.
+  /// local minimum inside that region, which is F's there. Returns the end (f NaN for a start
+  /// that is not a direction).
   template <typename Stop = bool (*)(const Vector3<S>&)>
-  void offerDescent(
+  Probe<S> offerDescent(
       const SupportMap<S>& piece, const Vector3<S>& start,
       int max_iterations = kSphereNewtonIterations,
       Stop stop = [](const Vector3<S>&) { return false; }) {
-    if (!start.allFinite() || !(start.norm() > S(0))) return;
-    offerDirection(
-        localMinimum(SupportMap<S>(*pair_.shape, *pair_.X_WS), piece, start, max_iterations, stop)
-            .v);
+    if (!start.allFinite() || !(start.norm() > S(0))) {
+      return {std::numeric_limits<S>::quiet_NaN(), start, start, start,
+              Eigen::Matrix<S, 3, 3>::Zero()};
+    }
+    const Probe<S> end =
+        localMinimum(SupportMap<S>(*pair_.shape, *pair_.X_WS), piece, start, max_iterations, stop);
+    offerDirection(end.v);
+    return end;
   }
 
   /// A one-parameter family of directions v(θ) (unit), θ over [from, to], with derivative(θ, v, a)

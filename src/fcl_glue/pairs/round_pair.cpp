@@ -63,6 +63,22 @@ struct Round {
     return cone && slant > S(0) ? Vector3<S>(2 * h * circleTangent(theta) / slant)
                                 : circleTangent(theta);
   }
+  /// Whether the rim at `side` (±1: t ± h·z; the cone's base is −1) supports B along u.
+  bool rimSupports(S side, const Vector3<S>& u) const {
+    return cone ? !apexSupports(u) : side * u.dot(z) >= S(0);
+  }
+  /// The direction v mirrored across the border of the rims' regions (the directions −v along
+  /// which a side normal supports B): its elevation φ over the plane ⊥ z reflected about the
+  /// border's, 0 for a cylinder, −atan(r/(2h)) for a cone; the azimuth kept.
+  Vector3<S> mirroredAcrossTheSide(const Vector3<S>& v) const {
+    const S vz = v.dot(z);
+    const Vector3<S> perp = v - vz * z;
+    const S rho = perp.norm();
+    const Vector3<S> radial = rho > S(0) ? Vector3<S>(perp / rho) : e1;
+    const S border = cone ? -std::atan2(r, 2 * h) : S(0);
+    const S phi = S(2) * border - std::atan2(vz, rho);
+    return std::cos(phi) * radial + std::sin(phi) * z;
+  }
   /// Along a side normal m the support is m·anchor (+ r for the cylinder): the apex, the centre.
   Vector3<S> sideAnchor() const { return cone ? Vector3<S>(t + h * z) : t; }
   /// How far x lies beyond the discs' planes and the side (≤ 0 inside): the cone's side is the
@@ -370,7 +386,8 @@ std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Round<S>& b,
 /// minima (the tests found two about 0.2 rad apart, within 5e-6 × size of each other); Newton's
 /// method on f_P (sphere_newton.h) starts from the escape directions of the rim's deepest
 /// sampled point and its two neighbours, of the sample with the least F, and from the best
-/// candidate where the rim supports B there; the apex gets a polytope vertex's descents
+/// candidate where the rim supports B there (the last first, before the rims' points: where the
+/// balls certify its minimum, the rest is skipped); the apex gets a polytope vertex's descents
 /// (docs/math.md → "Flat faces, edges and rims overlapping").
 /// Newton on a rim's f_P takes at most kRimSteps steps and stops within kNearAxis (rad) of the
 /// rim's axis: there f_P has a kink (the disc's normal, a candidate of its own), which Newton
@@ -392,12 +409,57 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
     return b.sideNormalDerivative(theta).dot(b.sideAnchor() - a);
   };
   depth.offerFamily(direction, derivative, S(0), S(2 * M_PI), true);
-  // Where the superellipsoid's rolling ball certifies the best so far (rolling_certificate.h),
-  // the rest is not needed: after the discs and the side, and again after the rims' points.
+  // Where the superellipsoid's balls certify the best so far (rolling_certificate.h), the rest
+  // is not needed: checked after the discs and the side, after the rims' points and after each
+  // descent.
   const S tolerance =
       S(kRollingOutsideTolerance) * std::max(pair.shape->size(), std::hypot(b.r, b.h));
   auto outside = [&b](const Vector3<S>& x) { return b.outside(x); };
   if (depth.certified(outside, tolerance)) return depth.best();
+  auto near_axis = [&](const Vector3<S>& v) {
+    return (v - v.dot(b.z) * b.z).norm() < S(kNearAxis);
+  };
+  auto never = [](const Vector3<S>&) { return false; };
+  const Vector3<S> apex = b.t + b.h * b.z;
+  const SupportMap<S> apex_map = SupportMap<S>::ofPoint(apex);
+  // Each descent may give a candidate the balls certify; then the rest is not needed. A rim's
+  // descent that ends outside the rim's region, below the best F so far, may hide F's minimum
+  // in a second local minimum of f_P inside the region, the first's mirror image across the
+  // side's normals: a cylinder overlap was 4.1e-4 × size too deep (docs/math.md). Each such end
+  // is mirrored once.
+  std::vector<Vector3<S>> mirrored;
+  auto descend = [&](const SupportMap<S>& piece, const Vector3<S>& from, int steps, auto stop,
+                     S side) {
+    const Probe<S> end = depth.offerDescent(piece, from, steps, stop);
+    if (depth.certified(outside, tolerance)) return true;
+    if (side == S(0) || !std::isfinite(end.f) || b.rimSupports(side, Vector3<S>(-end.v)) ||
+        !(end.f < -depth.best().distance)) {
+      return false;
+    }
+    for (const Vector3<S>& v : mirrored) {
+      if ((v - end.v).norm() < S(kNearAxis)) return false;
+    }
+    mirrored.push_back(end.v);
+    depth.offerDescent(piece, b.mirroredAcrossTheSide(end.v), steps, stop);
+    return depth.certified(outside, tolerance);
+  };
+  // The descent from the best so far of the piece that supports B there (below, after the rims'
+  // points, in any case): first, since where it is certified the rims' 24 point queries (about
+  // a quarter of an overlap's time) are not needed.
+  auto descendFromBest = [&](const Vector3<S>& best) {
+    const Vector3<S> u = -best;  // B's supporting direction there
+    if (b.cone && b.apexSupports(u)) {
+      return descend(apex_map, best, kSphereNewtonIterations, never, S(0));
+    }
+    for (S side : {S(1), S(-1)}) {  // the rims that support B along u (both where u ⊥ z)
+      if (b.cone ? side > S(0) : side * u.dot(b.z) < S(0)) continue;
+      const SupportMap<S> rim = SupportMap<S>::ofCircle(b.t + side * b.h * b.z, b.z, b.r);
+      if (descend(rim, best, kRimSteps, near_axis, side)) return true;
+    }
+    return false;
+  };
+  const Vector3<S> early = depth.best().normal;
+  if (!std::is_same_v<S, float> && descendFromBest(early)) return depth.best();
   constexpr int kRimPoints = 12;
   std::vector<S> sides;  // the rims: the cylinder's two, the cone's base
   for (S side : {S(1), S(-1)}) {
@@ -409,7 +471,6 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
       points.push_back(b.t + side * b.h * b.z + b.r * b.circle(S(2 * M_PI * k / kRimPoints)));
     }
   }
-  const Vector3<S> apex = b.t + b.h * b.z;
   if (b.cone) points.push_back(apex);
   const auto escapes = depth.offerPoints(points);
   if (depth.certified(outside, tolerance)) return depth.best();
@@ -417,15 +478,8 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
   if constexpr (std::is_same_v<S, float>) return depth.refinedBest();
   const Vector3<S> best = depth.best().normal, u = -best;  // B's supporting direction there
   const bool apex_supports = b.apexSupports(u);
-  auto near_axis = [&](const Vector3<S>& v) {
-    return (v - v.dot(b.z) * b.z).norm() < S(kNearAxis);
-  };
-  // Each descent may give a candidate the balls certify; then the rest is not needed.
-  auto descend = [&](const SupportMap<S>& piece, const Vector3<S>& from, int steps, auto stop) {
-    depth.offerDescent(piece, from, steps, stop);
-    return depth.certified(outside, tolerance);
-  };
-  auto never = [](const Vector3<S>&) { return false; };
+  // The descent from the best is not repeated while the best is the one it started from.
+  const bool repeated = best == early;
   for (std::size_t k = 0; k < sides.size(); ++k) {
     const SupportMap<S> rim = SupportMap<S>::ofCircle(b.t + sides[k] * b.h * b.z, b.z, b.r);
     const auto first = escapes.begin() + std::ptrdiff_t(k * kRimPoints), last = first + kRimPoints;
@@ -437,21 +491,23 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
         int(std::min_element(first, last, [](const auto& x, const auto& y) { return x.f < y.f; }) -
             first);
     for (int i : {deepest, (deepest + 1) % kRimPoints, (deepest + kRimPoints - 1) % kRimPoints}) {
-      if (descend(rim, first[i].direction, kRimSteps, near_axis)) return depth.best();
+      if (descend(rim, first[i].direction, kRimSteps, near_axis, sides[k])) return depth.best();
     }
     if (std::abs(lowest - deepest) > 1 && std::abs(lowest - deepest) != kRimPoints - 1) {
-      if (descend(rim, first[lowest].direction, kRimSteps, near_axis)) return depth.best();
+      if (descend(rim, first[lowest].direction, kRimSteps, near_axis, sides[k]))
+        return depth.best();
     }
     const bool rim_supports = b.cone ? !apex_supports : sides[k] * u.dot(b.z) >= S(0);
-    if (rim_supports && descend(rim, best, kRimSteps, near_axis)) return depth.best();
-  }
-  if (b.cone) {
-    const SupportMap<S> point = SupportMap<S>::ofPoint(apex);
-    if (escapes.back().distance < S(0) &&
-        descend(point, Vector3<S>(-b.z), kSphereNewtonIterations, never)) {
+    if (rim_supports && !repeated && descend(rim, best, kRimSteps, near_axis, sides[k])) {
       return depth.best();
     }
-    if (apex_supports) depth.offerDescent(point, best);
+  }
+  if (b.cone) {
+    if (escapes.back().distance < S(0) &&
+        descend(apex_map, Vector3<S>(-b.z), kSphereNewtonIterations, never, S(0))) {
+      return depth.best();
+    }
+    if (apex_supports && !repeated) depth.offerDescent(apex_map, best);
   }
   return depth.best();
 }
