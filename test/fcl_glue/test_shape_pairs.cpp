@@ -367,6 +367,14 @@ TEST(ShapePairs, RoundedOverlapsAgainstTheEnumeratedDepth) {
                            {0.3, 1.0});
 }
 
+/// A pose from its rotation's rows and its translation (the replayed overlaps below).
+fcl::Transform3d replayPose(const std::array<double, 9>& r, const V3& t) {
+  fcl::Transform3d X = fcl::Transform3d::Identity();
+  X.linear() << r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7], r[8];
+  X.translation() = t.cast<double>();
+  return X;
+}
+
 // The two overlaps on which the depth once stopped at a local minimum (1 in 90 of the larger
 // sample above, FSE_POLYTOPE_SEED=43: trials 30 and 37), replayed exactly: creased shapes where
 // F's minimum lies on an edge's circle of directions, inside the arc where that edge supports the
@@ -374,12 +382,6 @@ TEST(ShapePairs, RoundedOverlapsAgainstTheEnumeratedDepth) {
 // between them. The family search bracketed only its lowest sample and ended 8.6e-5 and 4.4e-8 ×
 // size too deep; now every sign change of the derivative is bracketed.
 TEST(ShapePairs, EdgeCirclesWithSeveralLocalMinima) {
-  auto transform = [](std::array<double, 9> r, V3 t) {
-    fcl::Transform3d X = fcl::Transform3d::Identity();
-    X.linear() << r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7], r[8];
-    X.translation() = t.cast<double>();
-    return X;
-  };
   struct Case {
     std::shared_ptr<Superellipsoidd> shape;
     fcl::Transform3d X_WA, X_WB;
@@ -389,27 +391,27 @@ TEST(ShapePairs, EdgeCirclesWithSeveralLocalMinima) {
       {std::make_shared<Superellipsoidd>(0x1.9a48dd9b235d7p+1, 0x1.2c7a3c4e7c0cfp-1,
                                          0x1.7e2c8de9c09cap+0, 0x1.64fcdcdbf38bep+0,
                                          0x1.c7afa2a903808p+0),
-       transform({0x1.617cd7cdff717p-1, 0x1.13366b423bad8p-3, 0x1.6bf224843777fp-1,
-                  0x1.4844209606f9fp-1, -0x1.2336c1d1dffcbp-1, -0x1.07c7a5a17f48cp-1,
-                  0x1.571d35be64588p-2, 0x1.9f7503f1c0bcap-1, -0x1.ea5642fff5ef5p-2},
-                 V3(-0x1.e9ff81cc8677fp+0, -0x1.e34a057fab4aap-2, 0x1.ea711825505fcp+0)),
-       transform({0x1.633e12ab03bb8p-2, 0x1.4d57d1ba98f8bp-1, 0x1.59a794b812116p-1,
-                  0x1.d8f2dde8ece8ep-1, -0x1.ccf63c5c337fp-4, -0x1.76ee813e6a5fap-2,
-                  -0x1.4c9b766541efp-3, 0x1.805367e99409bp-1, -0x1.47e85e2bd2114p-1},
-                 V3(-0x1.2a168e283cc8bp+2, 0x1.0e03cfe9ae9d3p+2, 0x1.13f38a3c4594p-1)),
+       replayPose({0x1.617cd7cdff717p-1, 0x1.13366b423bad8p-3, 0x1.6bf224843777fp-1,
+                   0x1.4844209606f9fp-1, -0x1.2336c1d1dffcbp-1, -0x1.07c7a5a17f48cp-1,
+                   0x1.571d35be64588p-2, 0x1.9f7503f1c0bcap-1, -0x1.ea5642fff5ef5p-2},
+                  V3(-0x1.e9ff81cc8677fp+0, -0x1.e34a057fab4aap-2, 0x1.ea711825505fcp+0)),
+       replayPose({0x1.633e12ab03bb8p-2, 0x1.4d57d1ba98f8bp-1, 0x1.59a794b812116p-1,
+                   0x1.d8f2dde8ece8ep-1, -0x1.ccf63c5c337fp-4, -0x1.76ee813e6a5fap-2,
+                   -0x1.4c9b766541efp-3, 0x1.805367e99409bp-1, -0x1.47e85e2bd2114p-1},
+                  V3(-0x1.2a168e283cc8bp+2, 0x1.0e03cfe9ae9d3p+2, 0x1.13f38a3c4594p-1)),
        std::make_shared<fcl::Boxd>(0x1.b155e52a1a53dp+2, 0x1.9ad402683296dp+2,
                                    0x1.4fb189c8489acp+1)},
       {std::make_shared<Superellipsoidd>(0x1.f451f33a0a37fp+0, 0x1.1a15269268d85p+1,
                                          0x1.410672324e105p+1, 0x1.719cde8d726b4p+0,
                                          0x1.95cad1ef043e4p+0),
-       transform({-0x1.61540e1bc4c9ap-1, -0x1.17cea65d1d4e5p-1, 0x1.e5d7f5fc0cafdp-2,
-                  -0x1.b968dcb8daa48p-3, 0x1.8fe2973e9578cp-1, 0x1.2c18d80bd6511p-1,
-                  -0x1.61bb11410bdf6p-1, 0x1.3579c96d2e4cfp-2, -0x1.504412b18c935p-1},
-                 V3(-0x1.1f9be3ac57fb6p+2, -0x1.7e023c75b4f04p+1, 0x1.2c18b15fbb0c6p+2)),
-       transform({-0x1.e78730c8d57a6p-7, 0x1.fbe3deb878462p-1, 0x1.012c1e27dcb9dp-3,
-                  -0x1.f5aae31a6bb2dp-1, 0x1.5a6af7efd939fp-7, -0x1.98ca8ff89c685p-3,
-                  -0x1.983a875ed29b5p-3, -0x1.021083ab8e846p-3, 0x1.f18f5f9cc0e86p-1},
-                 V3(-0x1.0c8a836f755fdp+3, 0x1.139c811fd7576p+2, -0x1.ac54806b8972p-1)),
+       replayPose({-0x1.61540e1bc4c9ap-1, -0x1.17cea65d1d4e5p-1, 0x1.e5d7f5fc0cafdp-2,
+                   -0x1.b968dcb8daa48p-3, 0x1.8fe2973e9578cp-1, 0x1.2c18d80bd6511p-1,
+                   -0x1.61bb11410bdf6p-1, 0x1.3579c96d2e4cfp-2, -0x1.504412b18c935p-1},
+                  V3(-0x1.1f9be3ac57fb6p+2, -0x1.7e023c75b4f04p+1, 0x1.2c18b15fbb0c6p+2)),
+       replayPose({-0x1.e78730c8d57a6p-7, 0x1.fbe3deb878462p-1, 0x1.012c1e27dcb9dp-3,
+                   -0x1.f5aae31a6bb2dp-1, 0x1.5a6af7efd939fp-7, -0x1.98ca8ff89c685p-3,
+                   -0x1.983a875ed29b5p-3, -0x1.021083ab8e846p-3, 0x1.f18f5f9cc0e86p-1},
+                  V3(-0x1.0c8a836f755fdp+3, 0x1.139c811fd7576p+2, -0x1.ac54806b8972p-1)),
        std::make_shared<fcl::Convexd>(
            std::make_shared<const std::vector<fcl::Vector3d>>(std::vector<fcl::Vector3d>{
                {0x1.39fa77c032055p+2, 0x1.1c4df30cd2aa6p+2, 0x1.6a1cdadf44ee3p+2},
@@ -438,25 +440,19 @@ TEST(ShapePairs, EdgeCirclesWithSeveralLocalMinima) {
 // mirror image across the side's normals. Our depth was 4.1e-4 × size too deep; now a rim's
 // descent that ends outside its region below the best F also descends from its mirror image.
 TEST(ShapePairs, RimMinimaMirroredAcrossTheSide) {
-  auto transform = [](std::array<double, 9> r, V3 t) {
-    fcl::Transform3d X = fcl::Transform3d::Identity();
-    X.linear() << r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7], r[8];
-    X.translation() = t.cast<double>();
-    return X;
-  };
   const auto shape = std::make_shared<Superellipsoidd>(0x1.9ed2f19b49a47p+0, 0x1.5102cc15f048ep-2,
                                                        0x1.26b3011eb401ep+1, 0x1.316043113d8aep-1,
                                                        0x1.2e9dc2ac3f736p+0);
   const fcl::Transform3d X_WA =
-      transform({-0x1.07b9e2de3b306p-1, -0x1.56102d09c7214p-1, -0x1.12ed8623a1f42p-1,
-                 -0x1.9f2764c2a1287p-1, 0x1.2a70a7c41dcb4p-1, 0x1.aebfdcbb1778bp-5,
-                 0x1.1c8881b13bcdbp-2, 0x1.d99558fb60e34p-2, -0x1.af15a62d2acf6p-1},
-                V3(-0x1.9f4b3f9a4e07cp-3, -0x1.5561cbdf67decp+0, -0x1.5378f23b580dp-3));
+      replayPose({-0x1.07b9e2de3b306p-1, -0x1.56102d09c7214p-1, -0x1.12ed8623a1f42p-1,
+                  -0x1.9f2764c2a1287p-1, 0x1.2a70a7c41dcb4p-1, 0x1.aebfdcbb1778bp-5,
+                  0x1.1c8881b13bcdbp-2, 0x1.d99558fb60e34p-2, -0x1.af15a62d2acf6p-1},
+                 V3(-0x1.9f4b3f9a4e07cp-3, -0x1.5561cbdf67decp+0, -0x1.5378f23b580dp-3));
   const fcl::Transform3d X_WB =
-      transform({0x1.6858c36a5bc24p-2, 0x1.b1e5064f70674p-1, 0x1.9705fd050896p-2,
-                 0x1.17b5eddd5209ap-2, 0x1.40b481b499b07p-2, -0x1.d1b1d74bcde25p-1,
-                 -0x1.ca6405b26923bp-1, 0x1.b6eff9bb7a41fp-2, -0x1.f0bcdeab11d69p-4},
-                V3(-0x1.c9c24014fac95p+0, -0x1.094dbcf72127ep+1, 0x1.31886c1114e9dp+1));
+      replayPose({0x1.6858c36a5bc24p-2, 0x1.b1e5064f70674p-1, 0x1.9705fd050896p-2,
+                  0x1.17b5eddd5209ap-2, 0x1.40b481b499b07p-2, -0x1.d1b1d74bcde25p-1,
+                  -0x1.ca6405b26923bp-1, 0x1.b6eff9bb7a41fp-2, -0x1.f0bcdeab11d69p-4},
+                 V3(-0x1.c9c24014fac95p+0, -0x1.094dbcf72127ep+1, 0x1.31886c1114e9dp+1));
   const auto cylinder =
       std::make_shared<fcl::Cylinderd>(0x1.cb44c8a595b24p+0, 0x1.01cd9445b4736p+1);
   const double size = 2 * shape->radii().maxCoeff();
