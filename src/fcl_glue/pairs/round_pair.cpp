@@ -67,6 +67,8 @@ struct Round {
   bool rimSupports(S side, const Vector3<S>& u) const {
     return cone ? !apexSupports(u) : side * u.dot(z) >= S(0);
   }
+  /// The rim at `side` as a support map (a circle).
+  SupportMap<S> rim(S side) const { return SupportMap<S>::ofCircle(t + side * h * z, z, r); }
   /// The direction v mirrored across the border of the rims' regions (the directions −v along
   /// which a side normal supports B): its elevation φ over the plane ⊥ z reflected about the
   /// border's, 0 for a cylinder, −atan(r/(2h)) for a cone; the azimuth kept.
@@ -443,6 +445,10 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
     depth.offerDescent(piece, b.mirroredAcrossTheSide(end.v), steps, stop);
     return depth.certified(outside, tolerance);
   };
+  std::vector<S> sides;  // the rims: the cylinder's two, the cone's base
+  for (S side : {S(1), S(-1)}) {
+    if (!(b.cone && side > S(0))) sides.push_back(side);
+  }
   // The descent from the best so far of the piece that supports B there (below, after the rims'
   // points, in any case): first, since where it is certified the rims' 24 point queries (about
   // a quarter of an overlap's time) are not needed.
@@ -451,20 +457,15 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
     if (b.cone && b.apexSupports(u)) {
       return descend(apex_map, best, kSphereNewtonIterations, never, S(0));
     }
-    for (S side : {S(1), S(-1)}) {  // the rims that support B along u (both where u ⊥ z)
-      if (b.cone ? side > S(0) : side * u.dot(b.z) < S(0)) continue;
-      const SupportMap<S> rim = SupportMap<S>::ofCircle(b.t + side * b.h * b.z, b.z, b.r);
-      if (descend(rim, best, kRimSteps, near_axis, side)) return true;
+    for (S side : sides) {  // the rims that support B along u (both where u ⊥ z)
+      if (!b.rimSupports(side, u)) continue;
+      if (descend(b.rim(side), best, kRimSteps, near_axis, side)) return true;
     }
     return false;
   };
   const Vector3<S> early = depth.best().normal;
   if (!std::is_same_v<S, float> && descendFromBest(early)) return depth.best();
   constexpr int kRimPoints = 12;
-  std::vector<S> sides;  // the rims: the cylinder's two, the cone's base
-  for (S side : {S(1), S(-1)}) {
-    if (!(b.cone && side > S(0))) sides.push_back(side);
-  }
   std::vector<Vector3<S>> points;
   for (S side : sides) {
     for (int k = 0; k < kRimPoints; ++k) {
@@ -477,11 +478,10 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
   // In float the pattern search stays, as for the polytopes (docs/math.md).
   if constexpr (std::is_same_v<S, float>) return depth.refinedBest();
   const Vector3<S> best = depth.best().normal, u = -best;  // B's supporting direction there
-  const bool apex_supports = b.apexSupports(u);
   // The descent from the best is not repeated while the best is the one it started from.
   const bool repeated = best == early;
   for (std::size_t k = 0; k < sides.size(); ++k) {
-    const SupportMap<S> rim = SupportMap<S>::ofCircle(b.t + sides[k] * b.h * b.z, b.z, b.r);
+    const SupportMap<S> rim = b.rim(sides[k]);
     const auto first = escapes.begin() + std::ptrdiff_t(k * kRimPoints), last = first + kRimPoints;
     const int deepest =
         int(std::min_element(first, last,
@@ -497,8 +497,8 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
       if (descend(rim, first[lowest].direction, kRimSteps, near_axis, sides[k]))
         return depth.best();
     }
-    const bool rim_supports = b.cone ? !apex_supports : sides[k] * u.dot(b.z) >= S(0);
-    if (rim_supports && !repeated && descend(rim, best, kRimSteps, near_axis, sides[k])) {
+    if (b.rimSupports(sides[k], u) && !repeated &&
+        descend(rim, best, kRimSteps, near_axis, sides[k])) {
       return depth.best();
     }
   }
@@ -507,7 +507,7 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
         descend(apex_map, Vector3<S>(-b.z), kSphereNewtonIterations, never, S(0))) {
       return depth.best();
     }
-    if (apex_supports && !repeated) depth.offerDescent(apex_map, best);
+    if (b.apexSupports(u) && !repeated) depth.offerDescent(apex_map, best);
   }
   return depth.best();
 }
