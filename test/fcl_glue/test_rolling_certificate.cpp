@@ -7,6 +7,9 @@
 // pair_construction.h. The ellipsoid's rolling radius is checked against its radii of curvature
 // sampled over its surface.
 
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/cone.h>
+#include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/ellipsoid.h>
 #include <gtest/gtest.h>
 
@@ -15,6 +18,7 @@
 #include <functional>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -169,22 +173,41 @@ TEST(RollingCertificate, FlatPartnersCertifyOnlyTheGlobalOverlap) {
   EXPECT_GT(wrong_without_radius, 0);
 }
 
-// The local ball (localBallCertified): the ball of radius F(v) tangent to the superellipsoid at
-// its support point a along v, centred at b = a − F·v, lies inside it. Superellipsoids of every
-// exponent in [0.1, 1.9] (most creased, where the rolling radius is 0) overlap boxes, cylinders and
-// cones by 0.0001 to 0.3 × its smallest radius. Candidates v: the construction's normal and small
-// turns of it, 32 lattice directions, and the local minima of F a long-double pattern search
-// reaches from the best lattice directions. F(v) is computed with the other shape's support
-// function in long double; b must lie in the other shape (to within the pairs' 1e-12 × size); where
-// the certificate accepts, F(v) must be the depth by enumeration (polytope_depth.h, round_depth.h).
-// It must accept some candidates, and some candidates with b inside that are not the depth must
-// exist (b's position alone certifies nothing). Most of those are refused because the ball's
-// centre crosses a mirror plane; the ball's own test is LocalBallLiesInsideTheShape.
-TEST(RollingCertificate, LocalBallCertifiesOnlyTheGlobalOverlap) {
+// How far x (world) lies beyond the bounding planes or surfaces of a box, a cylinder or a cone
+// posed X_WB, and, inside it, minus its distance to the boundary: the test's own formulas.
+double outsideOf(const fcl::CollisionGeometryd& g, const fcl::Transform3d& X_WB,
+                 const Vector3<double>& x) {
+  const Vector3<double> p = X_WB.linear().transpose() * (x - X_WB.translation());
+  if (const auto* b = dynamic_cast<const fcl::Boxd*>(&g)) {
+    return (p.cwiseAbs() - b->side / 2).maxCoeff();
+  }
+  const double radial = std::hypot(p[0], p[1]);
+  if (const auto* b = dynamic_cast<const fcl::Cylinderd*>(&g)) {
+    return std::max(radial - b->radius, std::abs(p[2]) - b->lz / 2);
+  }
+  const auto& k = dynamic_cast<const fcl::Coned&>(g);
+  const double h = k.lz / 2, slant = std::hypot(k.lz, k.radius);
+  return std::max(-h - p[2], (radial - k.radius * (h - p[2]) / k.lz) * k.lz / slant);
+}
+
+// The two balls (twoBallsCertified, as the overlaps use it): a ball inside the other shape tangent
+// at b = a − F·v and the local ball (localBallCertified) inside the superellipsoid tangent at its
+// support point a along v, of radii summing to F(v). Superellipsoids of every exponent in
+// [0.1, 1.9] (most creased, where the rolling radius is 0) overlap boxes, cylinders and cones by
+// 0.0001 to 1 × its smallest radius. Candidates v: the construction's normal and small turns of
+// it, the other shape's face, disc and side normals, 32 lattice directions, and the local minima
+// of F a long-double pattern search reaches from the best lattice directions. F(v) is computed
+// with the other shape's support function in long double; b must lie in the other shape (to
+// within the pairs' 1e-12 × size); where the certificate accepts, F(v) must be the depth by
+// enumeration (polytope_depth.h, round_depth.h). It must accept some candidates, some of them
+// only with the other shape's ball (the local ball alone refuses them), and some candidates with
+// b inside that are not the depth must exist (b's position alone certifies nothing). The balls'
+// own tests are LocalBallLiesInsideTheShape and InsideBallLiesInsideTheOtherShape.
+TEST(RollingCertificate, BallsCertifyOnlyTheGlobalOverlap) {
   std::mt19937 rng(23);
-  std::uniform_real_distribution<double> size(0.5, 5.0), log_gap(std::log(1e-4), std::log(0.3)),
+  std::uniform_real_distribution<double> size(0.5, 5.0), log_gap(std::log(1e-4), std::log(1.0)),
       turn(-1.0, 1.0);
-  int certified = 0, creased_certified = 0, wrong_without_ball = 0, tried = 0;
+  int certified = 0, creased_certified = 0, wrong_without_ball = 0, tried = 0, needs_other = 0;
   double worst = 0;
   for (int trial = 0; trial < 20; ++trial) {
     const LD scale = LD(size(rng));
@@ -206,20 +229,7 @@ TEST(RollingCertificate, LocalBallCertifiesOnlyTheGlobalOverlap) {
       if (!(depth > 0)) continue;  // a thin shape pierced through: not an overlap here
       const std::function<LD(const V3&)> h_b = test::supportFunction(g, X_WB);
       auto F = [&](const V3& v) { return h_a(v) + h_b(V3(-v)); };
-      // How far a point lies beyond the other shape's bounding planes or surfaces (its frame).
-      auto outside = [&](const Vector3<double>& x) {
-        const Vector3<double> p = X_WB.linear().transpose() * (x - X_WB.translation());
-        if (const auto* b = dynamic_cast<const fcl::Boxd*>(&g)) {
-          return (p.cwiseAbs() - b->side / 2).maxCoeff();
-        }
-        const double radial = std::hypot(p[0], p[1]);
-        if (const auto* b = dynamic_cast<const fcl::Cylinderd*>(&g)) {
-          return std::max(radial - b->radius, std::abs(p[2]) - b->lz / 2);
-        }
-        const auto& k = dynamic_cast<const fcl::Coned&>(g);
-        const double h = k.lz / 2, slant = std::hypot(k.lz, k.radius);
-        return std::max(-h - p[2], (radial - k.radius * (h - p[2]) / k.lz) * k.lz / slant);
-      };
+      auto outside = [&](const Vector3<double>& x) { return outsideOf(g, X_WB, x); };
       const double size_max = std::max(double(c.shape.radii.maxCoeff()), g.aabb_radius);
       const double tolerance = kRollingOutsideTolerance * size_max;
 
@@ -273,8 +283,13 @@ TEST(RollingCertificate, LocalBallCertifiesOnlyTheGlobalOverlap) {
         ++tried;
         const bool is_depth = f <= depth + 1e-9 * size_max;
         if (!is_depth) ++wrong_without_ball;
-        if (!localBallCertified(shape, c.X_WA, v, a, f, tolerance - std::max(out, 0.0))) continue;
+        if (!twoBallsCertified(shape, c.X_WA, v, a, f, outside, rollingRadius(shape), tolerance)) {
+          continue;
+        }
         ++certified;
+        if (!localBallCertified(shape, c.X_WA, v, a, f, tolerance - std::max(out, 0.0))) {
+          ++needs_other;
+        }
         if (creased) ++creased_certified;
         worst = std::max(worst, (f - depth) / size_max);
         EXPECT_TRUE(is_depth) << "trial " << trial << ", " << name << ": certified F " << f
@@ -283,12 +298,117 @@ TEST(RollingCertificate, LocalBallCertifiesOnlyTheGlobalOverlap) {
       }
     }
   }
-  std::cout << "local ball: " << tried << " candidates with b inside, " << certified
-            << " certified (" << creased_certified << " on creased shapes; worst " << worst
-            << " × size above the depth), " << wrong_without_ball << " not the depth\n";
+  std::cout << "two balls: " << tried << " candidates with b inside, " << certified
+            << " certified (" << creased_certified << " on creased shapes, " << needs_other
+            << " only with the other shape's ball; worst " << worst << " × size above the depth), "
+            << wrong_without_ball << " not the depth\n";
   EXPECT_GT(certified, 100);
+  EXPECT_GT(needs_other, 10);
   EXPECT_GT(creased_certified, 50);
   EXPECT_GT(wrong_without_ball, 20);
+}
+
+// The other shape's ball on its own (insideBall): tangent to a box's face, a cylinder's disc or
+// side, a cone's base or side at a random point b, along the inward normal v, with the test's
+// outsideOf. Ground truth by construction, in closed form: the largest such ball's radius (a
+// box's face: the least of its half thickness and b's distances to the other faces' planes; a
+// disc: of the half height and b's distance to the side; a side: of the radius and b's distance
+// to the discs; a cone's base: 2h·(r − ρ_b)/(slant + r), ρ_b b's distance to the axis; a cone's
+// side: the least of the radius that reaches the base and the one that reaches the axis). The
+// radius found may not exceed it (by more than the 1e-12 × size budget) and must reach it to
+// 1e-7 of the longest radius searched (the bisection's 24 halvings); the ball it gives lies in the
+// shape at 200 points of its sphere, by the shapes' own inequalities. At a cylinder's rim (v
+// between the disc's and the side's normals) there is no ball.
+TEST(RollingCertificate, InsideBallLiesInsideTheOtherShape) {
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> length(0.2, 4.0), unit(0.0, 1.0);
+  const std::vector<V3> lattice = test::fibonacciLattice(200);
+  int balls = 0, rims = 0;
+  for (int trial = 0; trial < 30; ++trial) {
+    fcl::Transform3d X = fcl::Transform3d::Identity();
+    X.linear() = test::randomRotation(rng).cast<double>();
+    X.translation() = Vector3<double>(unit(rng), unit(rng), unit(rng)) * 3.0;
+    const Vector3<double> sides(length(rng), length(rng), length(rng));
+    const fcl::Boxd box(sides);
+    const fcl::Cylinderd cylinder(sides[0] / 2, sides[1]);
+    const fcl::Coned cone(sides[0] / 2, sides[1]);
+    const double r = sides[0] / 2, h = sides[1] / 2, slant = std::hypot(2 * h, r);
+    const double size = sides.norm(), budget = 0.5e-12 * size;
+    for (int k = 0; k < 12; ++k) {
+      // b and the inward v in the shape's frame, and the largest radius, for one of six cases.
+      const int which = k % 6;
+      const fcl::CollisionGeometryd& g =
+          which == 0   ? static_cast<const fcl::CollisionGeometryd&>(box)
+          : which <= 2 ? static_cast<const fcl::CollisionGeometryd&>(cylinder)
+                       : static_cast<const fcl::CollisionGeometryd&>(cone);
+      const double theta = 2 * M_PI * unit(rng), c = std::cos(theta), s = std::sin(theta);
+      Vector3<double> b, v;
+      double largest = 0;
+      if (which == 0) {
+        const int i = std::min(2, int(3 * unit(rng)));  // the face's axis
+        const double sign = unit(rng) < 0.5 ? -1 : 1;
+        b = (Vector3<double>(unit(rng), unit(rng), unit(rng)) * 2 - Vector3<double>::Ones())
+                .cwiseProduct(sides / 2);
+        b[i] = sign * sides[i] / 2;
+        v = -sign * Vector3<double>::Unit(i);
+        largest = sides[i] / 2;
+        for (int j = 0; j < 3; ++j) {
+          if (j != i) largest = std::min(largest, sides[j] / 2 - std::abs(b[j]));
+        }
+      } else if (which == 1) {  // a cylinder's disc
+        const double rho = r * std::sqrt(unit(rng)), sign = unit(rng) < 0.5 ? -1 : 1;
+        b = Vector3<double>(rho * c, rho * s, sign * h);
+        v = Vector3<double>(0, 0, -sign);
+        largest = std::min(h, r - rho);
+      } else if (which == 2) {  // a cylinder's side
+        const double z = h * (2 * unit(rng) - 1);
+        b = Vector3<double>(r * c, r * s, z);
+        v = Vector3<double>(-c, -s, 0);
+        largest = std::min(r, h - std::abs(z));
+      } else if (which == 3 || which == 4) {  // a cone's base
+        const double rho = r * std::sqrt(unit(rng));
+        b = Vector3<double>(rho * c, rho * s, -h);
+        v = Vector3<double>(0, 0, 1);
+        largest = 2 * h * (r - rho) / (slant + r);
+      } else {  // a cone's side, at height z: its radius there r·(h − z)/(2h)
+        const double z = h * (2 * unit(rng) - 1), rho = r * (h - z) / (2 * h);
+        b = Vector3<double>(rho * c, rho * s, z);
+        v = -Vector3<double>(2 * h * c, 2 * h * s, r) / slant;
+        largest = std::min((z + h) / (1 + r / slant), rho * slant / (2 * h));
+      }
+      const Vector3<double> b_W = X * b, v_W = X.linear() * v;
+      auto outside = [&](const Vector3<double>& x) { return outsideOf(g, X, x); };
+      const double most = 2 * size;
+      const std::optional<InsideBall> ball = insideBall(outside, b_W, v_W, most, budget);
+      ASSERT_TRUE(ball.has_value()) << "trial " << trial << ", case " << which;
+      ++balls;
+      EXPECT_LE(ball->radius, largest + 1e-12 * size) << "trial " << trial << ", case " << which;
+      EXPECT_GE(ball->radius, largest - 1e-7 * most) << "trial " << trial << ", case " << which;
+      EXPECT_LE(ball->deficit, budget);
+      const Vector3<double> centre = b + ball->radius * v;
+      const double radius = ball->radius - ball->deficit;
+      for (const V3& w : lattice) {
+        const Vector3<double> p = centre + radius * w.cast<double>();
+        const double radial = std::hypot(p[0], p[1]), slack = 1e-12 * size;
+        const bool in = which == 0 ? ((p.cwiseAbs() - sides / 2).array() <= slack).all()
+                        : which <= 2
+                            ? radial <= r + slack && std::abs(p[2]) <= h + slack
+                            : p[2] >= -h - slack && radial <= r * (h - p[2]) / (2 * h) + slack;
+        ASSERT_TRUE(in) << "trial " << trial << ", case " << which << ": radius " << radius;
+      }
+      if (which == 1) {  // the disc's rim, v between the disc's and the side's inward normals
+        const double t = unit(rng);
+        const Vector3<double> rim(r * c, r * s, h),
+            inward = Vector3<double>(-t * c, -t * s, -(1 - t)).normalized();
+        const std::optional<InsideBall> none = insideBall(
+            outside, Vector3<double>(X * rim), Vector3<double>(X.linear() * inward), most, budget);
+        ASSERT_TRUE(none.has_value());
+        EXPECT_LE(none->radius - none->deficit, 2 * budget) << "trial " << trial;
+        ++rims;
+      }
+    }
+  }
+  std::cout << "inside balls: " << balls << " tangent balls, " << rims << " rims\n";
 }
 
 // The local ball's claim on its own: where localBallCertified accepts the ball of radius f

@@ -181,20 +181,18 @@ class DepthCandidates {
   /// every feature's own minimum (a polytope's faces, edge arcs and vertices; docs/math.md).
   PairHit<S> best() const { return {-f_, Vector3<S>(a_ - f_ * v_), a_, v_, -1}; }
   bool found() const { return has_best_; }
-  /// Whether the best candidate is the depth by the superellipsoid's rolling ball, or by the
-  /// ball of radius F tangent at its witness alone (rolling_certificate.h): `outside(b)` says how
-  /// far a point b lies beyond the other shape's bounding planes or surfaces; it and the local
-  /// ball's offset are to be within `tolerance` together. The local ball is tried once per best
-  /// candidate.
+  /// Whether the best candidate is the depth (rolling_certificate.h: twoBallsCertified): by a
+  /// ball inside the other shape tangent at its witness b = a − F·v and one inside the
+  /// superellipsoid tangent at a, of radii summing to F. `outside(x)` says how far a point x lies
+  /// beyond the other shape's bounding planes or surfaces, and, inside it, minus its distance to
+  /// the boundary; the two balls' shortfalls are to be within `tolerance` together. Tried once
+  /// per best candidate.
   template <typename Outside>
   bool certified(const Outside& outside, S tolerance) {
-    if (!has_best_ || !(f_ >= S(0))) return false;
-    const S out = S(outside(Vector3<S>(a_ - f_ * v_)));
-    if (rollingCertified(f_, rollingRadius(*pair_.shape), out, tolerance)) return true;
-    if (!(out <= tolerance) || ball_tried_) return false;
+    if (!has_best_ || ball_tried_) return false;
     ball_tried_ = true;
-    return localBallCertified(*pair_.shape, *pair_.X_WS, v_, a_, f_,
-                              tolerance - std::max(out, S(0)));
+    return twoBallsCertified(*pair_.shape, *pair_.X_WS, v_, a_, f_, outside,
+                             rollingRadius(*pair_.shape), tolerance);
   }
 
  private:
@@ -223,7 +221,7 @@ class DepthCandidates {
   S f_ = S(0);
   Vector3<S> v_ = Vector3<S>::UnitZ(), a_ = Vector3<S>::Zero();
   bool has_best_ = false;
-  bool ball_tried_ = false;  // the local ball was tried on the best so far (certified)
+  bool ball_tried_ = false;  // the balls were tried on the best so far (certified)
 };
 
 }  // namespace detail

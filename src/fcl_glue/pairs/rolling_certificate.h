@@ -34,6 +34,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "fcl_glue/pairs/sphere_newton.h"
 #include "fcl_superellipsoid/superellipsoid.h"
@@ -117,6 +118,62 @@ bool localBallCertified(const Superellipsoid<S>& shape, const fcl::Transform3<S>
   if (hessianBallCertified(gauge, y, nearest, gradient, f, error)) return true;
   return directionCoverCertified(shape.directionCover(), gauge, y, nearest, normal, gradient, f,
                                  S(exact_rules::kCoverCapLimit));
+}
+
+/// The other shape's share of a candidate's ball (above): the largest ρ in [0, most] found for
+/// which the ball of radius ρ − deficit centred at b + ρ·v lies in B, b on B's supporting plane
+/// along −v, with deficit = outside(b + ρ·v) + ρ ≤ `budget` (the ball's radius short of ρ).
+/// `outside(x)` must be, for x inside B, minus x's distance to B's boundary: the largest signed
+/// distance to a face plane of a polytope, to the discs' planes and the side of a cylinder or a
+/// cone (each an intersection of half-spaces or of a half-space, a slab and a round surface,
+/// whose interior distance is the least of the pieces'). Bisection on the deficit, which is
+/// convex in ρ (outside is a maximum of convex functions); each accepted ρ is one whose deficit
+/// was evaluated. Nothing where b's own deficit exceeds the budget or is not finite.
+struct InsideBall {
+  double radius, deficit;
+};
+template <typename S, typename Outside>
+std::optional<InsideBall> insideBall(const Outside& outside, const Vector3<S>& b,
+                                     const Vector3<S>& v, S most, S budget) {
+  auto deficit = [&](S rho) { return S(outside(Vector3<S>(b + rho * v))) + rho; };
+  const S at_b = deficit(S(0));
+  if (!(at_b <= budget) || !std::isfinite(at_b)) return std::nullopt;
+  InsideBall best{0.0, double(std::max(at_b, S(0)))};
+  const S at_most = deficit(most);
+  if (at_most <= budget) return InsideBall{double(most), double(std::max(at_most, S(0)))};
+  constexpr int kHalvings = 24;  // ρ to 6e-8 of `most`: the rest is the superellipsoid's share
+  S lo = S(0), hi = most;
+  for (int k = 0; k < kHalvings; ++k) {
+    const S mid = S(0.5) * (lo + hi);
+    const S d = deficit(mid);
+    if (d <= budget) {
+      lo = mid;
+      best = {double(mid), double(std::max(d, S(0)))};
+    } else {
+      hi = mid;
+    }
+  }
+  return best;
+}
+
+/// Whether the candidate v of an overlap, F(v) = f with the superellipsoid's support point a, is
+/// the depth to within `tolerance`, by a ball inside K = A − B of radius f around the origin
+/// (above): the ball of radius ρ_B inside B tangent at b = a − f·v (insideBall, within half the
+/// tolerance), and the ball of radius f − ρ_B inside A tangent at a, by the rolling radius or
+/// localBallCertified (within the rest of it). Their difference is the ball K needs.
+template <typename S, typename Outside>
+bool twoBallsCertified(const Superellipsoid<S>& shape, const fcl::Transform3<S>& X_WS,
+                       const Vector3<S>& v, const Vector3<S>& a, S f, const Outside& outside,
+                       S rolling_radius, S tolerance) {
+  if (!(f >= S(0))) return false;
+  const Vector3<S> b = a - f * v;
+  const S out = S(outside(b));
+  if (!(out <= tolerance)) return false;
+  std::optional<InsideBall> in_b = insideBall(outside, b, v, f, S(0.5) * tolerance);
+  if (!in_b) in_b = InsideBall{0.0, double(std::max(out, S(0)))};
+  const S rho_a = f - S(in_b->radius);
+  if (rho_a <= rolling_radius) return true;
+  return localBallCertified(shape, X_WS, v, a, rho_a, tolerance - S(in_b->deficit));
 }
 
 }  // namespace detail
