@@ -83,21 +83,34 @@ constexpr int kGjkTightIterations = 256;
 /// The pair's answer. Where our GJK (gjk.h, with the superellipsoid's exact support points and
 /// `other_support_point(u)`, the other geometry's point farthest along u) finds the shapes apart,
 /// `separated(start)` (an std::optional<PairHit<S>>, certified or nothing) from its witnesses;
-/// if nothing is certified, again from a GJK run to a tight gap. Otherwise libccd's overlap start
-/// (MPR, libccd_pair.h): `separated(start)` where the shapes are within 1e-3 × size of touching
-/// (the exact answer then decides the sign), else, or if nothing is certified, `overlap(start)`
-/// (a PairHit: depth_candidates.h).
-template <typename S, typename OtherSupportPoint, typename Separated, typename Overlap>
+/// if nothing is certified, again from a GJK run to a tight gap. Otherwise the overlap's
+/// candidates: `first()` offers those that need no start (a polytope's face normals, a cylinder's
+/// and a cone's flat ends and side) and gives the best if it is certified (depth_candidates.h);
+/// a certified depth above kNearTouching × size is the answer, with no libccd run (MPR took a
+/// quarter of a cylinder's overlap). Else libccd's overlap start (MPR, libccd_pair.h):
+/// `separated(start)` where the shapes are within kNearTouching × size of touching (the exact
+/// answer then decides the sign), else, or if nothing is certified, `overlap(start)` (a PairHit:
+/// depth_candidates.h), after `first()` if it has not run.
+constexpr double kNearTouching = 1e-3;
+template <typename S, typename OtherSupportPoint, typename Separated, typename First,
+          typename Overlap>
 std::optional<PairHit<S>> exactPair(const Pair<S>& pair, S other_size,
                                     const OtherSupportPoint& other_support_point,
-                                    Separated separated, Overlap overlap) {
+                                    Separated separated, First first, Overlap overlap) {
   auto shape_support_point = [&pair](const Vector3<S>& u) { return shapeSupport(pair, u); };
+  const S near = S(kNearTouching) * std::max(pair.shape->size(), other_size);
+  bool first_ran = false;
   for (const auto& [gap, iterations] : {std::pair<S, int>{S(kGjkRelativeGap), kGjkIterations},
                                         std::pair<S, int>{S(kGjkTightGap), kGjkTightIterations}}) {
     const std::optional<GjkSeparation<S>> apart = gjkSeparation<S>(
         shape_support_point, other_support_point,
         Vector3<S>(pair.X_WO->translation() - pair.X_WS->translation()), gap, iterations);
-    if (!apart) break;  // touching or overlapping (or not settled): a tighter gap will not help
+    if (!apart) {  // touching or overlapping (or not settled): a tighter gap will not help
+      first_ran = true;
+      const std::optional<PairHit<S>> hit = first();
+      if (hit && hit->distance < -near) return hit;
+      break;
+    }
     const Vector3<S> normal = (apart->on_b - apart->on_a).normalized();
     if (!normal.allFinite()) break;
     if (const std::optional<PairHit<S>> answer =
@@ -107,8 +120,11 @@ std::optional<PairHit<S>> exactPair(const Pair<S>& pair, S other_size,
   }
   const std::optional<PairHit<S>> start = libccdHit(pair);
   if (!start) return std::nullopt;
-  if (start->distance > -S(1e-3) * std::max(pair.shape->size(), other_size)) {
+  if (start->distance > -near) {
     if (const std::optional<PairHit<S>> answer = separated(*start)) return answer;
+  }
+  if (!first_ran) {
+    if (const std::optional<PairHit<S>> hit = first()) return hit;
   }
   return overlap(*start);
 }

@@ -461,19 +461,34 @@ Vector3<S> mirrored(const Pair<S>& pair, const Vector3<S>& v, int k) {
   return pair.X_WS->linear() * local;
 }
 
+/// How far the balls of an overlap may fall short (rolling_certificate.h), × the larger size.
+template <typename S>
+S overlapTolerance(const Pair<S>& pair, const Polytope<S>& p) {
+  return S(kRollingOutsideTolerance) * std::max(pair.shape->size(), p.extent);
+}
+
 /// The overlap's depth: the least F over the faces' normals, the vertices' escape directions and
 /// descents, the edges' arcs and MPR's normal (depth_candidates.h). These include every feature's
 /// own minimum, so no pattern search follows (docs/math.md).
-template <typename S>
-PairHit<S> overlap(const Pair<S>& pair, const Polytope<S>& p, const PairHit<S>& start) {
-  auto support = [&p](const Vector3<S>& u) { return p.support(u); };
-  DepthCandidates<S, decltype(support)> depth(pair, support);
-  depth.offerDirection(start.normal);
+/// `overlap`'s candidates that need no start, the faces' normals (in `depth`): the best if the
+/// balls certify it (rolling_certificate.h).
+template <typename S, typename Depth>
+std::optional<PairHit<S>> faceNormals(const Pair<S>& pair, const Polytope<S>& p, Depth& depth) {
   for (const Vector3<S>& n : p.normals) depth.offerDirection(Vector3<S>(-n));
-  // Where the superellipsoid's rolling ball certifies the best so far (rolling_certificate.h),
-  // the rest is not needed: after the faces, the vertices' point queries, each descent and each
-  // edge.
-  const S tolerance = S(kRollingOutsideTolerance) * std::max(pair.shape->size(), p.extent);
+  auto outside = [&p](const Vector3<S>& x) { return p.outside(x); };
+  if (depth.certified(outside, overlapTolerance(pair, p))) return depth.best();
+  return std::nullopt;
+}
+
+/// The rest, from libccd's start (faceNormals' candidates are in `depth`).
+template <typename S, typename Depth>
+PairHit<S> overlap(const Pair<S>& pair, const Polytope<S>& p, const PairHit<S>& start,
+                   Depth& depth) {
+  depth.offerDirection(start.normal);
+  // Where the superellipsoid's balls certify the best so far (rolling_certificate.h), the rest
+  // is not needed: after the faces (faceNormals), MPR's normal, the vertices' point queries,
+  // each descent and each edge.
+  const S tolerance = overlapTolerance(pair, p);
   auto outside = [&p](const Vector3<S>& x) { return p.outside(x); };
   if (depth.certified(outside, tolerance)) return depth.best();
   Vector3<S> centroid = Vector3<S>::Zero();
@@ -529,10 +544,13 @@ std::optional<PairHit<S>> polytopeHit(const Pair<S>& pair) {
   const std::optional<Polytope<S>> p = polytopeOf(pair);
   if (!p) return std::nullopt;
   if (const std::optional<PairHit<S>> hit = nearestVertexFeatures(pair, *p)) return hit;
+  auto support = [&p](const Vector3<S>& u) { return p->support(u); };
+  DepthCandidates<S, decltype(support)> depth(pair, support);
   return exactPair(
       pair, p->extent, [&](const Vector3<S>& u) { return p->supportPoint(u); },
       [&](const PairHit<S>& start) { return exactSeparated(pair, *p, start); },
-      [&](const PairHit<S>& start) { return overlap(pair, *p, start); });
+      [&] { return faceNormals(pair, *p, depth); },
+      [&](const PairHit<S>& start) { return overlap(pair, *p, start, depth); });
 }
 
 #define FSE_INSTANTIATE_POLYTOPE_HIT(S) \

@@ -379,6 +379,28 @@ std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Round<S>& b,
   return candidates.certified();
 }
 
+/// How far the balls of an overlap may fall short (rolling_certificate.h), × the larger size.
+template <typename S>
+S overlapTolerance(const Pair<S>& pair, const Round<S>& b) {
+  return S(kRollingOutsideTolerance) * std::max(pair.shape->size(), std::hypot(b.r, b.h));
+}
+
+/// The overlap's candidates that need no start: the flat ends' normals and the side's family.
+/// The best if the balls certify it (rolling_certificate.h).
+template <typename S, typename Depth>
+std::optional<PairHit<S>> endsAndSide(const Pair<S>& pair, const Round<S>& b, Depth& depth) {
+  depth.offerDirection(Vector3<S>(b.z));  // the base (cone, cylinder): v = −n = z
+  if (!b.cone) depth.offerDirection(Vector3<S>(-b.z));
+  auto direction = [&](S theta) { return Vector3<S>(-b.sideNormal(theta)); };
+  auto derivative = [&](S theta, const Vector3<S>&, const Vector3<S>& a) {
+    return b.sideNormalDerivative(theta).dot(b.sideAnchor() - a);
+  };
+  depth.offerFamily(direction, derivative, S(0), S(2 * M_PI), true);
+  auto outside = [&b](const Vector3<S>& x) { return b.outside(x); };
+  if (depth.certified(outside, overlapTolerance(pair, b))) return depth.best();
+  return std::nullopt;
+}
+
 /// The overlap's depth: the least F over the flat ends' normals, the side's family of normals,
 /// the rims' and the apex's regions and MPR's normal (depth_candidates.h). B is the hull of its
 /// rims (the cone's: the base rim and the apex), and F is smooth inside each one's region (the
@@ -399,23 +421,14 @@ std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Round<S>& b,
 constexpr int kRimSteps = 100;
 constexpr double kNearAxis = 1e-3;
 
-template <typename S>
-PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& start) {
-  auto support = [&b](const Vector3<S>& u) { return b.support(u); };
-  DepthCandidates<S, decltype(support)> depth(pair, support);
+/// The rest of the overlap's candidates (endsAndSide's are in `depth`), from libccd's start.
+template <typename S, typename Depth>
+PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& start, Depth& depth) {
   depth.offerDirection(start.normal);
-  depth.offerDirection(Vector3<S>(b.z));  // the base (cone, cylinder): v = −n = z
-  if (!b.cone) depth.offerDirection(Vector3<S>(-b.z));
-  auto direction = [&](S theta) { return Vector3<S>(-b.sideNormal(theta)); };
-  auto derivative = [&](S theta, const Vector3<S>&, const Vector3<S>& a) {
-    return b.sideNormalDerivative(theta).dot(b.sideAnchor() - a);
-  };
-  depth.offerFamily(direction, derivative, S(0), S(2 * M_PI), true);
   // Where the superellipsoid's balls certify the best so far (rolling_certificate.h), the rest
-  // is not needed: checked after the discs and the side, after the rims' points and after each
-  // descent.
-  const S tolerance =
-      S(kRollingOutsideTolerance) * std::max(pair.shape->size(), std::hypot(b.r, b.h));
+  // is not needed: checked after the discs and the side (endsAndSide), MPR's normal, the rims'
+  // points and each descent.
+  const S tolerance = overlapTolerance(pair, b);
   auto outside = [&b](const Vector3<S>& x) { return b.outside(x); };
   if (depth.certified(outside, tolerance)) return depth.best();
   auto near_axis = [&](const Vector3<S>& v) {
@@ -520,6 +533,8 @@ std::optional<PairHit<S>> roundHit(const Pair<S>& pair) {
   if (!b) return std::nullopt;
   if (const std::optional<PairHit<S>> hit = facingFeatures(pair, *b)) return hit;
   const S extent = std::hypot(b->r, b->h);
+  auto support = [&b](const Vector3<S>& u) { return b->support(u); };
+  DepthCandidates<S, decltype(support)> depth(pair, support);
   return exactPair(
       pair, extent, [&](const Vector3<S>& u) { return b->supportPoint(u); },
       [&](const PairHit<S>& start) {
@@ -528,7 +543,8 @@ std::optional<PairHit<S>> roundHit(const Pair<S>& pair) {
         if (auto hit = exactSeparated(pair, *b, start, S(1e-3) * extent)) return hit;
         return exactSeparated(pair, *b, start, std::numeric_limits<S>::infinity());
       },
-      [&](const PairHit<S>& start) { return overlap(pair, *b, start); });
+      [&] { return endsAndSide(pair, *b, depth); },
+      [&](const PairHit<S>& start) { return overlap(pair, *b, start, depth); });
 }
 
 #define FSE_INSTANTIATE_ROUND_HIT(S) template std::optional<PairHit<S>> roundHit(const Pair<S>&);
