@@ -463,7 +463,7 @@ TEST(ShapePairs, RimMinimaMirroredAcrossTheSide) {
 }
 
 // Degenerate configurations stay finite and correct: touching, coincident centres, a flat face
-// on a flat face, far apart (1e6 × size).
+// on a flat face, boxes without a face, far apart (1e6 × size).
 TEST(ShapePairs, DegenerateConfigurations) {
   std::mt19937 rng(5);
   // Touching: d = 0 by construction, for a smooth partner and a box.
@@ -521,6 +521,27 @@ TEST(ShapePairs, DegenerateConfigurations) {
             ask<double>(shape, fcl::Transform3d::Identity(), partner.geometry, X_WB, 1e-12, d == 0);
         EXPECT_NEAR(r.distance, d, d < 0 ? 1e-6 : 1e-12) << partner.name << ", d = " << d;
         if (d != 0) EXPECT_EQ(r.contacts, d < 0 ? 1u : 0u) << partner.name << ", d = " << d;
+      }
+    }
+  }
+  // Boxes without a face (two or three sides 0: a segment, a point) overlapping the shape: no
+  // point lies inside them, so no candidate's witness may count as inside (every point once did,
+  // and a point 0.1 × size deep came out 0.028 × size too deep). Against the long-double search,
+  // as for the coincident centres.
+  for (const Vector3<double>& sides : {Vector3<double>(0, 0, 2), Vector3<double>(0, 0, 0)}) {
+    for (double e : {0.5, 1.0, 1.5}) {
+      for (double x : {0.2, 0.5, 0.9}) {
+        const auto shape = std::make_shared<Superellipsoidd>(1.0, 1.0, 1.0, e, e);
+        const auto box = std::make_shared<fcl::Boxd>(sides);
+        const fcl::Transform3d X_WA = fcl::Transform3d::Identity();
+        const fcl::Transform3d X_WB(fcl::Translation3d(x, 0.1, 0));
+        const LD expected =
+            -referenceDepth(supportFunction(*shape, X_WA), supportFunction(*box, X_WB));
+        const Answer r = ask<double>(shape, X_WA, box, X_WB, 1e-9);
+        const std::string at = "sides " + std::to_string(sides[2]) + ", ε " + std::to_string(e) +
+                               ", x " + std::to_string(x);
+        EXPECT_GE(r.distance, double(expected) - 1e-12) << at;
+        EXPECT_LE(r.distance, double(expected) + 1e-6) << at;
       }
     }
   }

@@ -70,9 +70,11 @@ struct Polytope {
     return h;
   }
   /// How far x lies beyond the face planes (≤ 0 inside); for a flat polytope, beyond its plane
-  /// or, in the plane, beyond its loop's edges.
+  /// or, in the plane, beyond its loop's edges. A polytope without a face (a segment or a point:
+  /// every face degenerate) bounds nothing: infinity, so that no point counts as inside it.
   S outside(const Vector3<S>& x) const {
     const std::vector<std::vector<int>>& loops = faces();
+    if (loops.empty()) return std::numeric_limits<S>::infinity();
     S beyond = -std::numeric_limits<S>::infinity();
     for (std::size_t f = 0; f < loops.size(); ++f) {
       beyond = std::max(beyond, normals[f].dot(x - vertices[loops[f][0]]));
