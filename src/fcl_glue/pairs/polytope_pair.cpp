@@ -469,9 +469,6 @@ S overlapTolerance(const Pair<S>& pair, const Polytope<S>& p) {
   return S(kRollingOutsideTolerance) * std::max(pair.shape->size(), p.extent);
 }
 
-/// The overlap's depth: the least F over the faces' normals, the vertices' escape directions and
-/// descents, the edges' arcs and MPR's normal (depth_candidates.h). These include every feature's
-/// own minimum, so no pattern search follows (docs/math.md).
 /// `overlap`'s candidates that need no start, the faces' normals (in `depth`): the best if the
 /// balls certify it (rolling_certificate.h).
 template <typename S, typename Depth>
@@ -482,7 +479,10 @@ std::optional<PairHit<S>> faceNormals(const Pair<S>& pair, const Polytope<S>& p,
   return std::nullopt;
 }
 
-/// The rest, from libccd's start (faceNormals' candidates are in `depth`).
+/// The overlap's depth: the least F over the faces' normals, the vertices' escape directions and
+/// descents, the edges' arcs and MPR's normal (depth_candidates.h). These include every feature's
+/// own minimum, so no pattern search follows (docs/math.md).
+/// Here the rest, from libccd's start (faceNormals' candidates are in `depth`).
 template <typename S, typename Depth>
 PairHit<S> overlap(const Pair<S>& pair, const Polytope<S>& p, const PairHit<S>& start,
                    Depth& depth) {

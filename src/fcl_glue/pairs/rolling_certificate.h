@@ -29,6 +29,12 @@
 // centre b as the query point and a as its nearest surface point; it needs no global curvature
 // bound, so it also holds for creased shapes (an exponent > 1, where ρ_A = 0) wherever the
 // ball keeps away from the creases.
+//
+// B can carry a share of F(v): if a ball of radius ρ_B lies in B tangent at b (centred at
+// b + ρ_B·v) and one of radius F(v) − ρ_B lies in A tangent at a, their difference is the ball of
+// radius F(v) about the origin, inside K (docs/math.md → "The other shape's ball"). Deep
+// overlaps, whose local ball pokes out of a thin A, are certified this way where b lies on a
+// face or a side of B.
 
 #include <fcl/geometry/shape/ellipsoid.h>
 
@@ -172,7 +178,7 @@ bool twoBallsCertified(const Superellipsoid<S>& shape, const fcl::Transform3<S>&
   std::optional<InsideBall> in_b = insideBall(outside, b, v, f, S(0.5) * tolerance);
   if (!in_b) in_b = InsideBall{0.0, double(std::max(out, S(0)))};
   const S rho_a = f - S(in_b->radius);
-  if (rho_a <= rolling_radius) return true;
+  if (rollingCertified(rho_a, rolling_radius, S(in_b->deficit), tolerance)) return true;
   return localBallCertified(shape, X_WS, v, a, rho_a, tolerance - S(in_b->deficit));
 }
 
