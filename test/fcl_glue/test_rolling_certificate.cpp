@@ -57,6 +57,23 @@ std::vector<Vector3<double>> startDirections(const fcl::Transform3d& X_A,
   return out;
 }
 
+// How far x (world) lies beyond the bounding planes or surfaces of a box, a cylinder or a cone
+// posed X_WB, and, inside it, minus its distance to the boundary: the test's own formulas.
+double outsideOf(const fcl::CollisionGeometryd& g, const fcl::Transform3d& X_WB,
+                 const Vector3<double>& x) {
+  const Vector3<double> p = X_WB.linear().transpose() * (x - X_WB.translation());
+  if (const auto* b = dynamic_cast<const fcl::Boxd*>(&g)) {
+    return (p.cwiseAbs() - b->side / 2).maxCoeff();
+  }
+  const double radial = std::hypot(p[0], p[1]);
+  if (const auto* b = dynamic_cast<const fcl::Cylinderd*>(&g)) {
+    return std::max(radial - b->radius, std::abs(p[2]) - b->lz / 2);
+  }
+  const auto& k = dynamic_cast<const fcl::Coned&>(g);
+  const double h = k.lz / 2, slant = std::hypot(k.lz, k.radius);
+  return std::max(-h - p[2], (radial - k.radius * (h - p[2]) / k.lz) * k.lz / slant);
+}
+
 TEST(RollingCertificate, CertifiesOnlyTheGlobalOverlap) {
   std::mt19937 rng(17);
   std::uniform_real_distribution<double> exponent(0.3, 1.0), radius(0.25, 1.0), size(0.5, 5.0),
@@ -152,8 +169,7 @@ TEST(RollingCertificate, FlatPartnersCertifyOnlyTheGlobalOverlap) {
         for (const V3& w : corners) h_b = std::max(h_b, -v.dot(w.cast<double>()));
         const double f = v.dot(a) + h_b;
         const Vector3<double> b = a - f * v;
-        const Vector3<double> local = X_WB.linear().transpose() * (b - X_WB.translation());
-        const double outside = (local.cwiseAbs() - half).maxCoeff();
+        const double outside = outsideOf(*box, X_WB, b);
         const double tolerance = kRollingOutsideTolerance * size_max;
         const bool is_depth = f <= depth + 1e-9 * size_max;
         if (rollingCertified(f, std::numeric_limits<double>::infinity(), outside, tolerance) &&
@@ -171,23 +187,6 @@ TEST(RollingCertificate, FlatPartnersCertifyOnlyTheGlobalOverlap) {
             << " accepted without the radius that are not the depth\n";
   EXPECT_GT(certified, 20);
   EXPECT_GT(wrong_without_radius, 0);
-}
-
-// How far x (world) lies beyond the bounding planes or surfaces of a box, a cylinder or a cone
-// posed X_WB, and, inside it, minus its distance to the boundary: the test's own formulas.
-double outsideOf(const fcl::CollisionGeometryd& g, const fcl::Transform3d& X_WB,
-                 const Vector3<double>& x) {
-  const Vector3<double> p = X_WB.linear().transpose() * (x - X_WB.translation());
-  if (const auto* b = dynamic_cast<const fcl::Boxd*>(&g)) {
-    return (p.cwiseAbs() - b->side / 2).maxCoeff();
-  }
-  const double radial = std::hypot(p[0], p[1]);
-  if (const auto* b = dynamic_cast<const fcl::Cylinderd*>(&g)) {
-    return std::max(radial - b->radius, std::abs(p[2]) - b->lz / 2);
-  }
-  const auto& k = dynamic_cast<const fcl::Coned&>(g);
-  const double h = k.lz / 2, slant = std::hypot(k.lz, k.radius);
-  return std::max(-h - p[2], (radial - k.radius * (h - p[2]) / k.lz) * k.lz / slant);
 }
 
 // The two balls (twoBallsCertified, as the overlaps use it): a ball inside the other shape tangent

@@ -463,19 +463,13 @@ Vector3<S> mirrored(const Pair<S>& pair, const Vector3<S>& v, int k) {
   return pair.X_WS->linear() * local;
 }
 
-/// How far the balls of an overlap may fall short (rolling_certificate.h), × the larger size.
-template <typename S>
-S overlapTolerance(const Pair<S>& pair, const Polytope<S>& p) {
-  return S(kRollingOutsideTolerance) * std::max(pair.shape->size(), p.extent);
-}
-
 /// `overlap`'s candidates that need no start, the faces' normals (in `depth`): the best if the
 /// balls certify it (rolling_certificate.h).
 template <typename S, typename Depth>
 std::optional<PairHit<S>> faceNormals(const Pair<S>& pair, const Polytope<S>& p, Depth& depth) {
   for (const Vector3<S>& n : p.normals) depth.offerDirection(Vector3<S>(-n));
   auto outside = [&p](const Vector3<S>& x) { return p.outside(x); };
-  if (depth.certified(outside, overlapTolerance(pair, p))) return depth.best();
+  if (depth.certified(outside, overlapTolerance(*pair.shape, p.extent))) return depth.best();
   return std::nullopt;
 }
 
@@ -490,7 +484,7 @@ PairHit<S> overlap(const Pair<S>& pair, const Polytope<S>& p, const PairHit<S>& 
   // Where the superellipsoid's balls certify the best so far (rolling_certificate.h), the rest
   // is not needed: after the faces (faceNormals), MPR's normal, the vertices' point queries,
   // each descent and each edge.
-  const S tolerance = overlapTolerance(pair, p);
+  const S tolerance = overlapTolerance(*pair.shape, p.extent);
   auto outside = [&p](const Vector3<S>& x) { return p.outside(x); };
   if (depth.certified(outside, tolerance)) return depth.best();
   Vector3<S> centroid = Vector3<S>::Zero();

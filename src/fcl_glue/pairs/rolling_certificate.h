@@ -58,6 +58,13 @@ namespace detail {
 constexpr double kRollingGradientTolerance = 1e-10;
 constexpr double kRollingOutsideTolerance = 1e-12;
 
+/// How far the balls of an overlap may fall short (twoBallsCertified): kRollingOutsideTolerance ×
+/// the larger of the superellipsoid's size and the other shape's.
+template <typename S>
+S overlapTolerance(const Superellipsoid<S>& shape, S other_size) {
+  return S(kRollingOutsideTolerance) * std::max(shape.size(), other_size);
+}
+
 /// The radius of a ball that rolls freely inside the shape: the superellipsoid's lower bound on
 /// its smallest principal radius of curvature (0 where an exponent is > 1; computed on the
 /// shape's first use, then kept).

@@ -379,12 +379,6 @@ std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Round<S>& b,
   return candidates.certified();
 }
 
-/// How far the balls of an overlap may fall short (rolling_certificate.h), × the larger size.
-template <typename S>
-S overlapTolerance(const Pair<S>& pair, const Round<S>& b) {
-  return S(kRollingOutsideTolerance) * std::max(pair.shape->size(), std::hypot(b.r, b.h));
-}
-
 /// The overlap's candidates that need no start: the flat ends' normals and the side's family.
 /// The best if the balls certify it (rolling_certificate.h).
 template <typename S, typename Depth>
@@ -397,7 +391,8 @@ std::optional<PairHit<S>> endsAndSide(const Pair<S>& pair, const Round<S>& b, De
   };
   depth.offerFamily(direction, derivative, S(0), S(2 * M_PI), true);
   auto outside = [&b](const Vector3<S>& x) { return b.outside(x); };
-  if (depth.certified(outside, overlapTolerance(pair, b))) return depth.best();
+  if (depth.certified(outside, overlapTolerance(*pair.shape, std::hypot(b.r, b.h))))
+    return depth.best();
   return std::nullopt;
 }
 
@@ -428,7 +423,7 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
   // Where the superellipsoid's balls certify the best so far (rolling_certificate.h), the rest
   // is not needed: checked after the discs and the side (endsAndSide), MPR's normal, the rims'
   // points and each descent.
-  const S tolerance = overlapTolerance(pair, b);
+  const S tolerance = overlapTolerance(*pair.shape, std::hypot(b.r, b.h));
   auto outside = [&b](const Vector3<S>& x) { return b.outside(x); };
   if (depth.certified(outside, tolerance)) return depth.best();
   auto near_axis = [&](const Vector3<S>& v) {
