@@ -462,6 +462,35 @@ TEST(ShapePairs, RimMinimaMirroredAcrossTheSide) {
   EXPECT_NEAR(r.distance, -double(enumerated), 1e-9 * size);
 }
 
+// A rim whose f_P has two local minima 0.08 rad apart in elevation, 4.96e-6 × size apart in value
+// (the larger sample of RoundOverlapsAgainstTheEnumeratedDepth, FSE_ROUND_SEED=56: trial 27, a
+// creased shape (1.38; 1.69) on a cylinder's disc), replayed exactly. Every start (the rim's
+// deepest points, its least-F point, the best so far) descended to the minimum farther from the
+// rim's axis; F's minimum is the one nearer the axis. Now the rim also descends from halfway
+// between the best so far and its axis.
+TEST(ShapePairs, RimMinimumNearerTheAxis) {
+  const auto shape = std::make_shared<Superellipsoidd>(0x1.1b4ff6857f8d9p+1, 0x1.d22316851579ep-1,
+                                                       0x1.06e5cac4558bep+0, 0x1.61cb9eaa66b0ap+0,
+                                                       0x1.b1e91acb0ce3fp+0);
+  const fcl::Transform3d X_WA =
+      replayPose({-0x1.7760d8293e494p-1, -0x1.e193af24c94c2p-3, -0x1.46b620da47711p-1,
+                  -0x1.1ad2112f59ae6p-2, 0x1.ebba5a77f4a76p-1, -0x1.2ba860eaeef0fp-5,
+                  0x1.3e2dfadf6a7e5p-1, 0x1.32041741913b3p-3, -0x1.89c47d748dcd2p-1},
+                 V3(-0x1.151af2b61e379p+1, -0x1.57752d8123f9ap+0, -0x1.7afa7ae2323ap-1));
+  const fcl::Transform3d X_WB =
+      replayPose({-0x1.e2cd71ccd8ed3p-1, 0x1.0e1ec902cb06p-2, -0x1.9fc753227d38p-3,
+                  0x1.54450d828791ap-2, 0x1.9042b211e94bbp-1, -0x1.0e2a7b0306611p-1,
+                  0x1.3fc4bb2cc3eaap-6, -0x1.214cb3edd6954p-1, -0x1.a6509d3eab0a9p-1},
+                 V3(-0x1.0922a90ca00fep+2, -0x1.7e292878f7f23p+0, -0x1.5b802cb8290d2p+0));
+  const auto cylinder =
+      std::make_shared<fcl::Cylinderd>(0x1.5ba2c88f176ecp+0, 0x1.120ffc5e106d5p-1);
+  const double size = 2 * shape->radii().maxCoeff();
+  const Answer r = ask<double>(shape, X_WA, cylinder, X_WB, 1e-4 * size);
+  const LD enumerated = roundDepth(supportFunction(*shape, X_WA), *cylinder, X_WB);
+  ASSERT_GT(enumerated, 0);
+  EXPECT_NEAR(r.distance, -double(enumerated), 1e-9 * size);
+}
+
 // Degenerate configurations stay finite and correct: touching, coincident centres, a flat face
 // on a flat face, boxes without a face, far apart (1e6 × size).
 TEST(ShapePairs, DegenerateConfigurations) {

@@ -78,11 +78,11 @@ class DepthCandidates {
   /// sphere; where P supports the other shape only in a region elsewhere, f_P may have a second
   /// local minimum inside that region, which is F's there. Returns the end (f NaN for a start
   /// that is not a direction).
-  template <typename Stop = bool (*)(const Vector3<S>&)>
+  template <typename Stop = bool (*)(const Probe<S>&)>
   Probe<S> offerDescent(
       const SupportMap<S>& piece, const Vector3<S>& start,
       int max_iterations = kSphereNewtonIterations,
-      Stop stop = [](const Vector3<S>&) { return false; }) {
+      Stop stop = [](const Probe<S>&) { return false; }) {
     if (!start.allFinite() || !(start.norm() > S(0))) {
       return {std::numeric_limits<S>::quiet_NaN(), start, start, start,
               Eigen::Matrix<S, 3, 3>::Zero()};

@@ -404,15 +404,17 @@ std::optional<PairHit<S>> endsAndSide(const Pair<S>& pair, const Round<S>& b, De
 /// minimum of a rim's or the apex's f_P inside its region. A rim's f_P can have several local
 /// minima (the tests found two about 0.2 rad apart, within 5e-6 × size of each other); Newton's
 /// method on f_P (sphere_newton.h) starts from the escape directions of the rim's deepest
-/// sampled point and its two neighbours, of the sample with the least F, and from the best
+/// sampled point and its two neighbours, of the sample with the least F, from the best
 /// candidate where the rim supports B there (the last first, before the rims' points: where the
-/// balls certify its minimum, the rest is skipped); the apex gets a polytope vertex's descents
+/// balls certify its minimum, the rest is skipped), and from halfway between the best so far and
+/// the rim's axis, where the rim supports B there; the apex gets a polytope vertex's descents
 /// (docs/math.md → "Flat faces, edges and rims overlapping").
 /// Newton on a rim's f_P takes at most kRimSteps steps and stops within kNearAxis (rad) of the
 /// rim's axis: there f_P has a kink (the disc's normal, a candidate of its own), which Newton
 /// approaches by ever smaller steps and does not reach (uncapped, the overlaps took ten times
 /// as long). Away from the axis it converges in under 10 steps; one overlap of the larger
-/// sample needed more than 30 to reach 1e-10 × size.
+/// sample needed more than 30 to reach 1e-10 × size. Where MPR found a deep overlap, a rim's and
+/// the apex's descents also stop once f_P < 0: they have left the piece's region for good.
 constexpr int kRimSteps = 100;
 constexpr double kNearAxis = 1e-3;
 
@@ -426,10 +428,17 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
   const S tolerance = overlapTolerance(*pair.shape, std::hypot(b.r, b.h));
   auto outside = [&b](const Vector3<S>& x) { return b.outside(x); };
   if (depth.certified(outside, tolerance)) return depth.best();
-  auto near_axis = [&](const Vector3<S>& v) {
-    return (v - v.dot(b.z) * b.z).norm() < S(kNearAxis);
+  // Where MPR found the shapes overlapping by more than kNearTouching × size, F ≥ the depth > 0
+  // everywhere; a piece's f_P equals F inside its region and only falls along a descent, so once
+  // f_P < 0 the descent has left the region for good, and its end cannot be F's minimum there.
+  const S floor =
+      start.distance < -S(kNearTouching) * std::max(pair.shape->size(), std::hypot(b.r, b.h))
+          ? S(0)
+          : -std::numeric_limits<S>::infinity();
+  auto left_region = [floor](const Probe<S>& p) { return p.f < floor; };
+  auto near_axis = [&](const Probe<S>& p) {
+    return left_region(p) || (p.v - p.v.dot(b.z) * b.z).norm() < S(kNearAxis);
   };
-  auto never = [](const Vector3<S>&) { return false; };
   const Vector3<S> apex = b.t + b.h * b.z;
   const SupportMap<S> apex_map = SupportMap<S>::ofPoint(apex);
   // Each descent may give a candidate the balls certify; then the rest is not needed. A rim's
@@ -463,7 +472,7 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
   auto descendFromBest = [&](const Vector3<S>& best) {
     const Vector3<S> u = -best;  // B's supporting direction there
     if (b.cone && b.apexSupports(u)) {
-      return descend(apex_map, best, kSphereNewtonIterations, never, S(0));
+      return descend(apex_map, best, kSphereNewtonIterations, left_region, S(0));
     }
     for (S side : sides) {  // the rims that support B along u (both where u ⊥ z)
       if (!b.rimSupports(side, u)) continue;
@@ -509,13 +518,22 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
         descend(rim, best, kRimSteps, near_axis, sides[k])) {
       return depth.best();
     }
+    // From halfway between the best so far and the rim's axis (the disc's direction −side·z):
+    // the basin of a minimum nearer the axis than the best's.
+    const Vector3<S> now = depth.best().normal;
+    if (b.rimSupports(sides[k], Vector3<S>(-now)) &&
+        descend(rim, Vector3<S>(now - sides[k] * b.z), kRimSteps, near_axis, sides[k])) {
+      return depth.best();
+    }
   }
   if (b.cone) {
     if (escapes.back().distance < S(0) &&
-        descend(apex_map, Vector3<S>(-b.z), kSphereNewtonIterations, never, S(0))) {
+        descend(apex_map, Vector3<S>(-b.z), kSphereNewtonIterations, left_region, S(0))) {
       return depth.best();
     }
-    if (b.apexSupports(u) && !repeated) depth.offerDescent(apex_map, best);
+    if (b.apexSupports(u) && !repeated) {
+      depth.offerDescent(apex_map, best, kSphereNewtonIterations, left_region);
+    }
   }
   return depth.best();
 }

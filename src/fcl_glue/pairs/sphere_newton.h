@@ -44,12 +44,12 @@ std::array<Vector3<S>, 2> tangents(const Vector3<S>& v) {
 
 /// Newton's method for F on the unit sphere from v0, with a backtracking line search and the
 /// Riemannian Hessian shifted to positive definite where F is not locally convex; at most
-/// `max_iterations` steps, and none after an iterate v with stop(v).
-template <typename S, typename Stop = bool (*)(const Vector3<S>&)>
+/// `max_iterations` steps, and none after an iterate p (a Probe) with stop(p).
+template <typename S, typename Stop = bool (*)(const Probe<S>&)>
 Probe<S> localMinimum(
     const SupportMap<S>& A, const SupportMap<S>& B, const Vector3<S>& v0,
     int max_iterations = kSphereNewtonIterations,
-    Stop stop = [](const Vector3<S>&) { return false; }) {
+    Stop stop = [](const Probe<S>&) { return false; }) {
   Probe<S> p = probe(A, B, Vector3<S>(v0.normalized()));
   const S eps = std::numeric_limits<S>::epsilon();
   for (int it = 0; it < max_iterations; ++it) {
@@ -90,7 +90,7 @@ Probe<S> localMinimum(
         break;
       }
     }
-    if (!moved || length < S(64) * eps || stop(p.v)) break;
+    if (!moved || length < S(64) * eps || stop(p)) break;
   }
   return p;
 }
