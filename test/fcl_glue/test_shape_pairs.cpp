@@ -375,6 +375,19 @@ fcl::Transform3d replayPose(const std::array<double, 9>& r, const V3& t) {
   return X;
 }
 
+/// A replayed overlap of the shape and a cylinder or cone: ours is the enumerated depth
+/// (test_support/round_depth.h) to 1e-9 × size.
+void expectTheEnumeratedRoundDepth(const std::shared_ptr<Superellipsoidd>& shape,
+                                   const fcl::Transform3d& X_WA,
+                                   const std::shared_ptr<fcl::CollisionGeometryd>& other,
+                                   const fcl::Transform3d& X_WB) {
+  const double size = 2 * shape->radii().maxCoeff();
+  const Answer r = ask<double>(shape, X_WA, other, X_WB, 1e-4 * size);
+  const LD enumerated = roundDepth(supportFunction(*shape, X_WA), *other, X_WB);
+  ASSERT_GT(enumerated, 0);
+  EXPECT_NEAR(r.distance, -double(enumerated), 1e-9 * size);
+}
+
 // The two overlaps on which the depth once stopped at a local minimum (1 in 90 of the larger
 // sample above, FSE_POLYTOPE_SEED=43: trials 30 and 37), replayed exactly: creased shapes where
 // F's minimum lies on an edge's circle of directions, inside the arc where that edge supports the
@@ -455,11 +468,7 @@ TEST(ShapePairs, RimMinimaMirroredAcrossTheSide) {
                  V3(-0x1.c9c24014fac95p+0, -0x1.094dbcf72127ep+1, 0x1.31886c1114e9dp+1));
   const auto cylinder =
       std::make_shared<fcl::Cylinderd>(0x1.cb44c8a595b24p+0, 0x1.01cd9445b4736p+1);
-  const double size = 2 * shape->radii().maxCoeff();
-  const Answer r = ask<double>(shape, X_WA, cylinder, X_WB, 1e-4 * size);
-  const LD enumerated = roundDepth(supportFunction(*shape, X_WA), *cylinder, X_WB);
-  ASSERT_GT(enumerated, 0);
-  EXPECT_NEAR(r.distance, -double(enumerated), 1e-9 * size);
+  expectTheEnumeratedRoundDepth(shape, X_WA, cylinder, X_WB);
 }
 
 // A rim whose f_P has two local minima 0.08 rad apart in elevation, 4.96e-6 × size apart in value
@@ -484,11 +493,7 @@ TEST(ShapePairs, RimMinimumNearerTheAxis) {
                  V3(-0x1.0922a90ca00fep+2, -0x1.7e292878f7f23p+0, -0x1.5b802cb8290d2p+0));
   const auto cylinder =
       std::make_shared<fcl::Cylinderd>(0x1.5ba2c88f176ecp+0, 0x1.120ffc5e106d5p-1);
-  const double size = 2 * shape->radii().maxCoeff();
-  const Answer r = ask<double>(shape, X_WA, cylinder, X_WB, 1e-4 * size);
-  const LD enumerated = roundDepth(supportFunction(*shape, X_WA), *cylinder, X_WB);
-  ASSERT_GT(enumerated, 0);
-  EXPECT_NEAR(r.distance, -double(enumerated), 1e-9 * size);
+  expectTheEnumeratedRoundDepth(shape, X_WA, cylinder, X_WB);
 }
 
 // Degenerate configurations stay finite and correct: touching, coincident centres, a flat face

@@ -92,13 +92,18 @@ constexpr int kGjkTightIterations = 256;
 /// answer then decides the sign), else, or if nothing is certified, `overlap(start)` (a PairHit:
 /// depth_candidates.h), after `first()` if it has not run.
 constexpr double kNearTouching = 1e-3;
+/// kNearTouching × size: how deep an overlap has to be for the pairs to trust its sign.
+template <typename S>
+S nearTouching(const Pair<S>& pair, S other_size) {
+  return S(kNearTouching) * std::max(pair.shape->size(), other_size);
+}
 template <typename S, typename OtherSupportPoint, typename Separated, typename First,
           typename Overlap>
 std::optional<PairHit<S>> exactPair(const Pair<S>& pair, S other_size,
                                     const OtherSupportPoint& other_support_point,
                                     Separated separated, First first, Overlap overlap) {
   auto shape_support_point = [&pair](const Vector3<S>& u) { return shapeSupport(pair, u); };
-  const S near = S(kNearTouching) * std::max(pair.shape->size(), other_size);
+  const S near = nearTouching(pair, other_size);
   bool first_ran = false;
   for (const auto& [gap, iterations] : {std::pair<S, int>{S(kGjkRelativeGap), kGjkIterations},
                                         std::pair<S, int>{S(kGjkTightGap), kGjkTightIterations}}) {

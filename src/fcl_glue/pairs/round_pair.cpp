@@ -431,10 +431,9 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
   // Where MPR found the shapes overlapping by more than kNearTouching × size, F ≥ the depth > 0
   // everywhere; a piece's f_P equals F inside its region and only falls along a descent, so once
   // f_P < 0 the descent has left the region for good, and its end cannot be F's minimum there.
-  const S depth_floor =
-      start.distance < -S(kNearTouching) * std::max(pair.shape->size(), std::hypot(b.r, b.h))
-          ? S(0)
-          : -std::numeric_limits<S>::infinity();
+  const S depth_floor = start.distance < -nearTouching(pair, std::hypot(b.r, b.h))
+                            ? S(0)
+                            : -std::numeric_limits<S>::infinity();
   auto left_region = [depth_floor](const Probe<S>& p) { return p.f < depth_floor; };
   auto near_axis = [&](const Probe<S>& p) {
     return left_region(p) || (p.v - p.v.dot(b.z) * b.z).norm() < S(kNearAxis);
