@@ -114,15 +114,17 @@ std::optional<PairHit<S>> pointApart(const Superellipsoid<S>& shape, const fcl::
 
 /// The disc's point nearest to the shape (posed by X_WS) and the shape's nearest point, if the
 /// disc (centre, unit axis, radius r) is found apart from it; v0 is where the search starts (a
-/// direction from the shape towards the disc); at most `max_iterations` Newton steps.
-template <typename S>
-std::optional<PairHit<S>> discApart(const Superellipsoid<S>& shape, const fcl::Transform3<S>& X_WS,
-                                    const Vector3<S>& centre, const Vector3<S>& axis, S r,
-                                    const Vector3<S>& v0,
-                                    int max_iterations = kSphereNewtonIterations) {
+/// direction from the shape towards the disc); Newton stops early after an iterate with
+/// stop(probe) (sphere_newton.h).
+template <typename S, typename Stop = bool (*)(const Probe<S>&)>
+std::optional<PairHit<S>> discApart(
+    const Superellipsoid<S>& shape, const fcl::Transform3<S>& X_WS, const Vector3<S>& centre,
+    const Vector3<S>& axis, S r, const Vector3<S>& v0,
+    Stop stop = [](const Probe<S>&) { return false; }) {
   const Vector3<S> start = v0.squaredNorm() > S(0) ? v0 : Vector3<S>::UnitZ();
-  const Probe<S> q = localMinimum(SupportMap<S>(shape, X_WS),
-                                  SupportMap<S>::ofCircle(centre, axis, r), start, max_iterations);
+  const Probe<S> q =
+      localMinimum(SupportMap<S>(shape, X_WS), SupportMap<S>::ofCircle(centre, axis, r), start,
+                   kSphereNewtonIterations, stop);
   if (!(q.f < S(0)) || !q.v.allFinite() || !q.b.allFinite()) return std::nullopt;
   return PairHit<S>{(q.b - q.a).norm(), q.b, q.a, q.v, -1};
 }

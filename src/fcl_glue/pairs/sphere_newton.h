@@ -19,6 +19,12 @@ namespace detail {
 
 /// Newton iterations per start at most.
 constexpr int kSphereNewtonIterations = 200;
+/// A full Newton step (no shift, no backtracking) shorter than this (rad) is the last: where
+/// Newton converges quadratically the error after it is of order this squared, far below
+/// rounding, and the steps after it only wander in F's rounding noise (the benchmark's cone
+/// pairs took 2.1 of their 7.5 steps per descent below 1e-9 rad before this stop; docs/math.md →
+/// "Smooth partners: Newton on the sphere").
+constexpr double kSphereNewtonConverged = 1e-9;
 
 template <typename S>
 struct Probe {
@@ -63,7 +69,8 @@ Probe<S> localMinimum(
     const S scale = std::abs(h11) + std::abs(h22) + std::abs(p.f) + std::numeric_limits<S>::min();
     const S lowest = S(0.5) * (h11 + h22) - hypot2(S(0.5) * (h11 - h22), h12);
     const S floor = S(1e-8) * scale;
-    if (!(lowest > floor)) {
+    const bool shifted = !(lowest > floor);
+    if (shifted) {
       const S shift = floor - (std::isfinite(lowest) ? lowest : -scale);
       h11 += shift;
       h22 += shift;
@@ -80,17 +87,19 @@ Probe<S> localMinimum(
     const S slope = g1 * x1 + g2 * x2;  // ≤ 0: the Hessian is positive definite
     // F's rounding: support values are sums of terms as large as |a|, |b|.
     const S noise = S(16) * eps * (p.a.norm() + p.b.norm() + std::abs(p.f));
-    bool moved = false;
+    bool moved = false, full = false;
     for (S alpha = S(1); alpha > S(1e-12); alpha *= S(0.5)) {
       const Vector3<S> v = (p.v + alpha * (x1 * t1 + x2 * t2)).normalized();
       const Probe<S> q = probe(A, B, v);
       if (q.f <= p.f + S(1e-4) * alpha * slope || (q.f <= p.f + noise && alpha == S(1))) {
         moved = (q.v - p.v).norm() > S(0);
+        full = alpha == S(1);
         p = q;
         break;
       }
     }
-    if (!moved || length < S(64) * eps || stop(p)) break;
+    const bool converged = full && !shifted && length < S(kSphereNewtonConverged);
+    if (!moved || length < S(64) * eps || converged || stop(p)) break;
   }
   return p;
 }
