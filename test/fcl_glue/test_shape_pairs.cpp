@@ -375,6 +375,13 @@ fcl::Transform3d replayPose(const std::array<double, 9>& r, const V3& t) {
   return X;
 }
 
+/// An overlap replayed exactly (hex floats): the shape and the other geometry, posed.
+struct ReplayedOverlap {
+  std::shared_ptr<Superellipsoidd> shape;
+  fcl::Transform3d X_WA, X_WB;
+  std::shared_ptr<fcl::CollisionGeometryd> other;
+};
+
 /// A replayed overlap of the shape and a cylinder or cone: ours is the enumerated depth
 /// (test_support/round_depth.h) to 1e-9 × size.
 void expectTheEnumeratedRoundDepth(const std::shared_ptr<Superellipsoidd>& shape,
@@ -395,12 +402,7 @@ void expectTheEnumeratedRoundDepth(const std::shared_ptr<Superellipsoidd>& shape
 // between them. The family search bracketed only its lowest sample and ended 8.6e-5 and 4.4e-8 ×
 // size too deep; now every sign change of the derivative is bracketed.
 TEST(ShapePairs, EdgeCirclesWithSeveralLocalMinima) {
-  struct Case {
-    std::shared_ptr<Superellipsoidd> shape;
-    fcl::Transform3d X_WA, X_WB;
-    std::shared_ptr<fcl::CollisionGeometryd> other;
-  };
-  const std::vector<Case> cases = {
+  const std::vector<ReplayedOverlap> cases = {
       {std::make_shared<Superellipsoidd>(0x1.9a48dd9b235d7p+1, 0x1.2c7a3c4e7c0cfp-1,
                                          0x1.7e2c8de9c09cap+0, 0x1.64fcdcdbf38bep+0,
                                          0x1.c7afa2a903808p+0),
@@ -435,7 +437,7 @@ TEST(ShapePairs, EdgeCirclesWithSeveralLocalMinima) {
            std::make_shared<const std::vector<int>>(
                std::vector<int>{3, 0, 1, 2, 3, 0, 3, 1, 3, 0, 2, 3, 3, 1, 3, 2}))},
   };
-  for (const Case& c : cases) {
+  for (const ReplayedOverlap& c : cases) {
     const double size = 2 * c.shape->radii().maxCoeff();
     const Answer r = ask<double>(c.shape, c.X_WA, c.other, c.X_WB, 1e-4 * size);
     const LD enumerated =
@@ -507,12 +509,7 @@ TEST(ShapePairs, RimMinimumNearerTheAxis) {
 // rim's axis that the balls do not certify is followed by the rim's meridians, along which F is
 // smooth.
 TEST(ShapePairs, RimMinimaAroundTheAxisKink) {
-  struct Case {
-    std::shared_ptr<Superellipsoidd> shape;
-    fcl::Transform3d X_WA, X_WB;
-    std::shared_ptr<fcl::CollisionGeometryd> other;
-  };
-  const std::vector<Case> cases = {
+  const std::vector<ReplayedOverlap> cases = {
       {std::make_shared<Superellipsoidd>(0x1.95db3f56ff905p+0, 0x1.25900f0caaa76p+1,
                                          0x1.57e59566c329fp+1, 0x1.e17ad113174f6p+0,
                                          0x1.20b27c23be485p-1),
@@ -538,7 +535,8 @@ TEST(ShapePairs, RimMinimaAroundTheAxisKink) {
                   V3(0x1.7c2061df24899p+0, 0x1.c51066df86b32p+0, -0x1.7b449a34aad05p-1)),
        std::make_shared<fcl::Cylinderd>(0x1.2b574ad6fe5afp-1, 0x1.0a488a647c399p-1)},
   };
-  for (const Case& c : cases) expectTheEnumeratedRoundDepth(c.shape, c.X_WA, c.other, c.X_WB);
+  for (const ReplayedOverlap& c : cases)
+    expectTheEnumeratedRoundDepth(c.shape, c.X_WA, c.other, c.X_WB);
 }
 
 // Degenerate configurations stay finite and correct: touching, coincident centres, a flat face
