@@ -382,6 +382,17 @@ struct ReplayedOverlap {
   std::shared_ptr<fcl::CollisionGeometryd> other;
 };
 
+/// A replayed overlap of the shape and a polytope: ours is the enumerated depth
+/// (test_support/polytope_depth.h) to 1e-9 × size.
+void expectTheEnumeratedPolytopeDepth(const ReplayedOverlap& c) {
+  const double size = 2 * c.shape->radii().maxCoeff();
+  const Answer r = ask<double>(c.shape, c.X_WA, c.other, c.X_WB, 1e-4 * size);
+  const LD enumerated =
+      polytopeDepth(supportFunction(*c.shape, c.X_WA), polytopeVertices(*c.other, c.X_WB));
+  ASSERT_GT(enumerated, 0);
+  EXPECT_NEAR(r.distance, -double(enumerated), 1e-9 * size) << *c.shape;
+}
+
 /// A replayed overlap of the shape and a cylinder or cone: ours is the enumerated depth
 /// (test_support/round_depth.h) to 1e-9 × size.
 void expectTheEnumeratedRoundDepth(const std::shared_ptr<Superellipsoidd>& shape,
@@ -437,14 +448,36 @@ TEST(ShapePairs, EdgeCirclesWithSeveralLocalMinima) {
            std::make_shared<const std::vector<int>>(
                std::vector<int>{3, 0, 1, 2, 3, 0, 3, 1, 3, 0, 2, 3, 3, 1, 3, 2}))},
   };
-  for (const ReplayedOverlap& c : cases) {
-    const double size = 2 * c.shape->radii().maxCoeff();
-    const Answer r = ask<double>(c.shape, c.X_WA, c.other, c.X_WB, 1e-4 * size);
-    const LD enumerated =
-        polytopeDepth(supportFunction(*c.shape, c.X_WA), polytopeVertices(*c.other, c.X_WB));
-    ASSERT_GT(enumerated, 0);
-    EXPECT_NEAR(r.distance, -double(enumerated), 1e-9 * size) << *c.shape;
-  }
+  for (const ReplayedOverlap& c : cases) expectTheEnumeratedPolytopeDepth(c);
+}
+
+// A rounded shape's overlap with a triangle (the larger sample of
+// RoundedOverlapsAgainstTheEnumeratedDepth, FSE_ROUNDED_POLYTOPE_SEED=70: trial 25), replayed
+// exactly: a (0.47, 1.53, 2.29) shape, ε = (0.57, 0.62), with a triangle's vertex inside it,
+// 0.295 from its −x side and 0.305 from its −z face. That vertex's escape direction (to the −x
+// side) lies outside the vertex's region, and the descents from it mirrored across each
+// coordinate plane end elsewhere; F's minimum is the vertex's local minimum towards the −z face,
+// inside its region. Our depth was
+// 2.3e-4 × size too deep (an edge's best); now the vertex also descends from each of the shape's
+// axis directions in its region.
+TEST(ShapePairs, VertexMinimumBelowAnotherFace) {
+  const auto triangle = std::make_shared<fcl::TrianglePd>(
+      fcl::Vector3d(0x1.0f3ce6929cbb6p+2, 0, 0),
+      fcl::Vector3d(-0x1.0f3ce6929cbb6p+1, 0x1.b1fb0a842df8ap+1, 0),
+      fcl::Vector3d(-0x1.0f3ce6929cbb6p+1, -0x1.b1fb0a842df8ap+1, 0));
+  expectTheEnumeratedPolytopeDepth(
+      {std::make_shared<Superellipsoidd>(0x1.dcc6d81dfbbecp-2, 0x1.8756f0eaeb405p+0,
+                                         0x1.25014fb5826f8p+1, 0x1.216499e54a788p-1,
+                                         0x1.3db80d739d84dp-1),
+       replayPose({-0x1.706e538cbac13p-2, -0x1.dc8c850dd5da4p-1, 0x1.0a824c315b696p-4,
+                   -0x1.ea7a3c7a8ceb6p-4, -0x1.7a6453aad37b3p-6, -0x1.fc2dac5e705a7p-1,
+                   0x1.d9c2e537c754ap-1, -0x1.75a8c73c91f28p-2, -0x1.a67b0c6e795bap-4},
+                  V3(-0x1.a07090bbb3876p+1, 0x1.b18595e58b1d9p+1, 0x1.ec72fd138b1fap+1)),
+       replayPose({0x1.adc17338ec25p-1, -0x1.1468b25a0aab9p-2, -0x1.e321375a2cff5p-2,
+                   -0x1.9ac929c166ddep-2, -0x1.c961ed0e2c2e3p-1, -0x1.9ee6f0ed85207p-3,
+                   -0x1.7798380f2ab6ep-2, 0x1.6ff057c7f7226p-2, -0x1.b75a79964ed05p-1},
+                  V3(-0x1.d1d4d1375036ap+2, 0x1.c2bfe3111feccp+2, 0x1.5c414f0a3bb25p+2)),
+       triangle});
 }
 
 // The cylinder overlap on which the depth once stopped at a local minimum (1 in 360 of the larger

@@ -511,6 +511,17 @@ PairHit<S> overlap(const Pair<S>& pair, const Polytope<S>& p, const PairHit<S>& 
         depth.offerDescent(vertex, mirrored(pair, escapes[i].direction, k));
         if (depth.certified(outside, tolerance)) return depth.best();
       }
+      // Where A is box-like, f_b has a local minimum near each of its axis directions (the
+      // depth below each flat face); one in b's region can be F's minimum while the escape
+      // direction lies below another face, outside it (a rounded shape's overlap with a
+      // triangle was 2.3e-4 × size too deep: RoundedOverlapsAgainstTheEnumeratedDepth). So f_b
+      // also descends from each of A's six axis directions that lies in b's region.
+      for (int k = 0; k < 6; ++k) {
+        const Vector3<S> axis = pair.X_WS->linear().col(k % 3) * (k < 3 ? S(1) : S(-1));
+        if (p.support(Vector3<S>(-axis)) > -axis.dot(p.vertices[i]) + tolerance) continue;
+        depth.offerDescent(vertex, axis);
+        if (depth.certified(outside, tolerance)) return depth.best();
+      }
     }
   }
   const S inscribed = inscribedRadius(*pair.shape);
