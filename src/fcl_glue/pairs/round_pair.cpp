@@ -160,9 +160,12 @@ std::optional<PairHit<S>> sideHit(const Pair<S>& pair, const Round<S>& b, S thet
 /// sideHit's bracketing takes dozens of support points): F' = m'·(anchor − a) as there, and
 /// F'' = m''·(anchor − a) + m'·∇²h_A(−m)·m' (a = ∇h_A(−m)), with a backtracking line search;
 /// F is convex in θ near a minimum with F < 0 (the side apart from the shape). Nothing unless
-/// it settles at a minimum with F < 0 whose point is on the side.
+/// it settles at a minimum with F < 0 whose point is on the side; `past_base` says whether the
+/// point where it settled, moved onto the side's plane, lies beyond the base's plane (the base's
+/// rim is then the likely contact).
 template <typename S>
-std::optional<PairHit<S>> sideNewton(const Pair<S>& pair, const Round<S>& b, S theta0) {
+std::optional<PairHit<S>> sideNewton(const Pair<S>& pair, const Round<S>& b, S theta0,
+                                     bool& past_base) {
   const SupportMap<S> A(*pair.shape, *pair.X_WS);
   const S slant = std::hypot(2 * b.h, b.r);
   const S curl = b.cone && slant > S(0) ? 2 * b.h / slant : S(1);  // m'' = −curl·c(θ)
@@ -202,9 +205,10 @@ std::optional<PairHit<S>> sideNewton(const Pair<S>& pair, const Round<S>& b, S t
     }
     if (!moved || std::abs(step) < S(64) * eps) break;
   }
-  if (!(p.f < S(0)) || !p.a.allFinite()) return std::nullopt;
   const Vector3<S> v = -p.m;
-  const Vector3<S> on = p.a - p.f * v;  // the gap −F along v
+  const Vector3<S> on = p.a - p.f * v;  // the gap −F along v (F < 0), on the side's plane
+  past_base = (on - b.t).dot(b.z) < -b.h;
+  if (!(p.f < S(0)) || !p.a.allFinite()) return std::nullopt;
   if (!(std::abs((on - b.t).dot(b.z)) <= b.h)) return std::nullopt;
   return PairHit<S>{-p.f, on, p.a, v, -1};
 }
@@ -226,15 +230,28 @@ bool onEnd(const Round<S>& b, const PairHit<S>& end) {
   return off_axis.norm() <= b.r;
 }
 
+/// Whether the cone's apex lies nearer the shape than the base rim's point at θ0, by the shape's
+/// gauge (as the polytope's nearest vertex is picked): which of the two to try first once the
+/// side has failed.
+template <typename S>
+bool apexNearer(const Pair<S>& pair, const Round<S>& b, S theta0) {
+  const fcl::Transform3<S> X_SW = pair.X_WS->inverse(Eigen::Isometry);
+  auto gauge = [&](const Vector3<S>& p) { return pair.shape->gauge(Vector3<S>(X_SW * p)); };
+  const Vector3<S> rim_point = b.t - b.h * b.z + b.r * b.circle(theta0);
+  return gauge(Vector3<S>(b.t + b.h * b.z)) < gauge(rim_point);
+}
+
 /// Newton steps on the facing rim at most before a separating direction is found: apart, it
 /// converges in a few; where the shapes overlap there is none to find.
 constexpr int kGuessSteps = 10;
 
 /// The exact answer for separated shapes from the features that face the shape, picked by the
 /// direction w from B's centre towards the shape's, tried before any GJK: the flat end facing
-/// it, the side (the cylinder's: its axis against the shape by Newton, feature_newton.h, moved
-/// out by r; the cone's: the search over its normals from w's angle), the rim facing it (Newton
-/// on its disc), the cone's apex (the point solver, cold), in the order w suggests. Nothing
+/// it (the cone's base, wherever w points), the side (the cylinder's: its axis against the shape
+/// by Newton, feature_newton.h, moved out by r; the cone's: the search over its normals from w's
+/// angle), that end's rim (Newton on its disc), the cone's apex (the point solver, cold), in the
+/// order w suggests, and once the cone's side has failed, the apex before the base if it is
+/// nearer by the shape's gauge. Nothing
 /// unless one is certified; a miss costs the features tried, then GJK starts as before
 /// (docs/math.md → "Shape pairs"). A point of the shape found inside B, or of B's rim inside
 /// the shape, proves an overlap: then nothing more is tried (the rim's Newton, finding no
@@ -246,13 +263,17 @@ std::optional<PairHit<S>> facingFeatures(const Pair<S>& pair, const Round<S>& b)
   auto support = [&b](const Vector3<S>& x) { return b.support(x); };
   Candidates<S, decltype(support)> candidates(pair, support, std::hypot(b.r, b.h));
   auto inside = [&b](const PairHit<S>& hit) { return b.outside(hit.on_shape) <= S(0); };
-  // The end whose outward normal side·z points towards the shape; the cone has its base only.
-  const S side = w.dot(b.z) < S(0) ? S(-1) : S(1);
-  const bool end_faces = !(b.cone && side > S(0));
+  // The end whose outward normal side·z points towards the shape; the cone's base, its only
+  // end, wherever the shape is (a shape above the base's plane can still touch its rim).
+  const S side = b.cone || w.dot(b.z) < S(0) ? S(-1) : S(1);
+  // A cone's base faces away from a shape above its plane: there it is tried only where the
+  // side's search settled past the base (an overlap would otherwise spend the rim's guesses).
+  bool past_base = false;
+  auto base_faces = [&] { return !(b.cone && w.dot(b.z) > S(0)) || past_base; };
   const S theta0 = std::atan2(w.dot(b.e2), w.dot(b.e1));
   enum class Tried { kCertified, kOverlap, kNot };
   auto end = [&] {
-    if (!end_faces) return Tried::kNot;
+    if (!base_faces()) return Tried::kNot;
     const PairHit<S> hit = endCandidate(pair, b, side);
     if (inside(hit)) return Tried::kOverlap;
     return onEnd(b, hit) && candidates.offer(hit) ? Tried::kCertified : Tried::kNot;
@@ -260,7 +281,7 @@ std::optional<PairHit<S>> facingFeatures(const Pair<S>& pair, const Round<S>& b)
   auto lateral = [&] {
     std::optional<PairHit<S>> hit;
     if (b.cone) {
-      hit = sideNewton(pair, b, theta0);
+      hit = sideNewton(pair, b, theta0, past_base);
     } else if (const std::optional<PairHit<S>> axis =
                    segmentInteriorApart(*pair.shape, *pair.X_WS, Vector3<S>(b.t - b.h * b.z),
                                         Vector3<S>(b.t + b.h * b.z), Vector3<S>(-w))) {
@@ -272,7 +293,7 @@ std::optional<PairHit<S>> facingFeatures(const Pair<S>& pair, const Round<S>& b)
     return candidates.offer(*hit) ? Tried::kCertified : Tried::kNot;
   };
   auto rim = [&] {
-    if (!end_faces) return Tried::kNot;
+    if (!base_faces()) return Tried::kNot;
     const Vector3<S> centre = b.t + side * b.h * b.z;
     const Vector3<S> rim_point = centre + b.r * b.circle(theta0);
     const fcl::Transform3<S> X_SW = pair.X_WS->inverse(Eigen::Isometry);
@@ -282,7 +303,9 @@ std::optional<PairHit<S>> facingFeatures(const Pair<S>& pair, const Round<S>& b)
     // the answer is as exact as the other features'.
     const Vector3<S> normal = side * b.z + b.sideNormal(theta0);
     int steps = 0;
-    auto hopeless = [&steps](const Probe<S>& p) { return ++steps >= kGuessSteps && !(p.f < S(0)); };
+    auto hopeless = [&](const Probe<S>& p) {
+      return ++steps >= kGuessSteps && (!(p.f < S(0)) || b.apexSupports(Vector3<S>(-p.v)));
+    };
     const std::optional<PairHit<S>> hit =
         discApart(*pair.shape, *pair.X_WS, centre, b.z, b.r, Vector3<S>(-normal), hopeless);
     return hit && candidates.offer(*hit) ? Tried::kCertified : Tried::kNot;
@@ -308,13 +331,18 @@ std::optional<PairHit<S>> facingFeatures(const Pair<S>& pair, const Round<S>& b)
   } else if (side_first) {
     order = {kSide, kEnd, kRim, kApex};
   }
-  for (const Feature feature : order) {
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const Feature feature = order[k];
     const Tried t = feature == kEnd    ? end()
                     : feature == kSide ? lateral()
                     : feature == kRim  ? rim()
                                        : apex();
     if (t == Tried::kCertified) return candidates.certified();
     if (t == Tried::kOverlap) return std::nullopt;
+    // The cone's side failed first: the apex next if it lies nearer the shape than the base rim.
+    if (k == 0 && feature == kSide && b.cone && apexNearer(pair, b, theta0)) {
+      order = {kSide, kApex, kEnd, kRim};
+    }
   }
   return std::nullopt;
 }
