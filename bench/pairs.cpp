@@ -246,7 +246,8 @@ int runPairs(int per_kind, const std::string& csv, const std::vector<std::string
       "Shape pairs: the superellipsoid (ε1, ε2 in [0.1, 1.9], radii 10:1) against each kind, "
       "%d random pairs × poses per kind, built with a known separation d (test_support/"
       "pair_construction.h) in buckets d/size = -0.1, -0.01, 0.001, 0.01, 0.1, 1. Time: the "
-      "mean of the fastest %d of %d passes, per query. Error × size: against the construction where separated; "
+      "mean of the fastest %d of %d passes, per query. Error × size: against the construction "
+      "where separated; "
       "overlapping, against ours where ours is exact (the smooth shapes, sphere, halfspace, plane: "
       "checked against an independent reference in test/fcl_glue/test_shape_pairs.cpp); for the "
       "others ours is a search over candidate directions without an independent reference here "
@@ -291,8 +292,7 @@ int runPairs(int per_kind, const std::string& csv, const std::vector<std::string
         }
         std::sort(passes.begin(), passes.end());
         const double kept = std::accumulate(passes.begin(), passes.begin() + kKept, 0.0) / kKept;
-        Row row{kind, name, bucket, 1e6 * kept / double(group.size()),
-                0,    0,    0,      int(group.size())};
+        Row row{kind, name, bucket, 1e6 * kept / double(group.size()), 0, 0, 0, int(group.size())};
         std::vector<double> errors;
         for (std::size_t i = 0; i < group.size(); ++i) {
           if (!std::isfinite(answers[i]) || std::abs(answers[i]) > 1e30) {
