@@ -43,6 +43,8 @@ namespace detail {
 
 /// Newton iterations on the circle at most.
 constexpr int kCircleNewtonIterations = 100;
+/// segmentApart's early look at an end: once Newton's next step on the line is under this (rad).
+constexpr double kNearMinimum = 0.1;
 
 /// A direction of the circle v(θ) = cos θ·t1 + sin θ·t2 and G there, with G' and G''.
 template <typename S>
@@ -53,10 +55,11 @@ struct CircleProbe {
 
 /// The direction v ⊥ axis (unit) minimising G(v) = h_A(v) − v·c from v0's part ⊥ axis: Newton in
 /// θ with a backtracking line search; G'' = t·∇²h_A·t − G (t = dv/dθ), so G is strictly convex
-/// where G < 0.
-template <typename S>
-CircleProbe<S> lineMinimum(const SupportMap<S>& A, const Vector3<S>& c, const Vector3<S>& axis,
-                           const Vector3<S>& v0) {
+/// where G < 0. Stops early at an iterate with stop(probe).
+template <typename S, typename Stop = bool (*)(const CircleProbe<S>&)>
+CircleProbe<S> lineMinimum(
+    const SupportMap<S>& A, const Vector3<S>& c, const Vector3<S>& axis, const Vector3<S>& v0,
+    Stop stop = [](const CircleProbe<S>&) { return false; }) {
   Vector3<S> t1 = v0 - v0.dot(axis) * axis;
   if (!(t1.norm() > S(1e-3) * v0.norm())) t1 = axis.unitOrthogonal();
   t1.normalize();
@@ -71,7 +74,7 @@ CircleProbe<S> lineMinimum(const SupportMap<S>& A, const Vector3<S>& c, const Ve
   };
   const S eps = std::numeric_limits<S>::epsilon();
   CircleProbe<S> p = at(S(0));
-  for (int it = 0; it < kCircleNewtonIterations; ++it) {
+  for (int it = 0; it < kCircleNewtonIterations && !stop(p); ++it) {
     const S scale = std::abs(p.g2) + std::abs(p.g) + std::numeric_limits<S>::min();
     const S curvature = std::max(p.g2, S(1e-8) * scale);
     S step = -p.g1 / curvature;
@@ -169,7 +172,22 @@ std::optional<PairHit<S>> segmentApart(const Superellipsoid<S>& shape,
     return hit && hit->distance >= S(0) ? hit : std::nullopt;
   }
   const Vector3<S> axis = e / length;
-  const CircleProbe<S> line = lineMinimum(A, c, axis, v0);
+  // Once G < 0 the line is apart from the shape; where the support point then lies beyond an
+  // end, that end is usually the segment's nearest point, and it is if the distance grows from
+  // it into the segment (convex along the segment): then the line's minimum is not needed.
+  auto beyond_an_end = [&](const CircleProbe<S>& p) {
+    return p.g < S(0) && std::abs(p.g1) <= S(kNearMinimum) * p.g2 &&
+           std::abs((p.a - c).dot(axis)) > S(0.5) * length;
+  };
+  CircleProbe<S> line = lineMinimum(A, c, axis, v0, beyond_an_end);
+  if (beyond_an_end(line) && line.v.allFinite()) {
+    const bool last = (line.a - c).dot(axis) > S(0);
+    const std::optional<PairHit<S>> hit = pointApart(shape, X_WS, last ? p1 : p0, line.a);
+    if (hit && hit->distance >= S(0) && hit->normal.dot(last ? Vector3<S>(-e) : e) >= S(0)) {
+      return hit;
+    }
+    line = lineMinimum(A, c, axis, line.v);  // the line's minimum after all
+  }
   if (line.g < S(0) && line.v.allFinite()) {
     const S s = (line.a - c).dot(axis);
     if (std::abs(s) <= S(0.5) * length) return lineHit(line, c, axis, s);
