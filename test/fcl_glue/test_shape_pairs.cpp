@@ -457,9 +457,8 @@ TEST(ShapePairs, EdgeCirclesWithSeveralLocalMinima) {
 // 0.295 from its −x side and 0.305 from its −z face. That vertex's escape direction (to the −x
 // side) lies outside the vertex's region, and the descents from it mirrored across each
 // coordinate plane end elsewhere; F's minimum is the vertex's local minimum towards the −z face,
-// inside its region. Our depth was
-// 2.3e-4 × size too deep (an edge's best); now the vertex also descends from each of the shape's
-// axis directions in its region.
+// inside its region. Our depth was 2.3e-4 × size too deep (an edge's best); now the vertex also
+// descends from each of the shape's axis directions in its region.
 TEST(ShapePairs, VertexMinimumBelowAnotherFace) {
   const auto triangle = std::make_shared<fcl::TrianglePd>(
       fcl::Vector3d(0x1.0f3ce6929cbb6p+2, 0, 0),

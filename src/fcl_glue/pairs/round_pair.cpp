@@ -51,6 +51,8 @@ struct Round {
     return t - h * z + out;
   }
   Vector3<S> circle(S theta) const { return std::cos(theta) * e1 + std::sin(theta) * e2; }
+  /// The point at angle θ of the rim on the end side·z (side ±1; the cone's base: −1).
+  Vector3<S> rimPoint(S side, S theta) const { return t + side * h * z + r * circle(theta); }
   Vector3<S> circleTangent(S theta) const { return -std::sin(theta) * e1 + std::cos(theta) * e2; }
   /// The side's outward unit normal m(θ) (the cone's ∝ 2h·c(θ) + r·z) and its derivative.
   Vector3<S> sideNormal(S theta) const {
@@ -237,8 +239,7 @@ template <typename S>
 bool apexNearer(const Pair<S>& pair, const Round<S>& b, S theta0) {
   const fcl::Transform3<S> X_SW = pair.X_WS->inverse(Eigen::Isometry);
   auto gauge = [&](const Vector3<S>& p) { return pair.shape->gauge(Vector3<S>(X_SW * p)); };
-  const Vector3<S> rim_point = b.t - b.h * b.z + b.r * b.circle(theta0);
-  return gauge(Vector3<S>(b.t + b.h * b.z)) < gauge(rim_point);
+  return gauge(Vector3<S>(b.t + b.h * b.z)) < gauge(b.rimPoint(S(-1), theta0));
 }
 
 /// Newton steps on the facing rim at most before a separating direction is found: apart, it
@@ -295,12 +296,12 @@ std::optional<PairHit<S>> facingFeatures(const Pair<S>& pair, const Round<S>& b)
   auto rim = [&] {
     if (!base_faces()) return Tried::kNot;
     const Vector3<S> centre = b.t + side * b.h * b.z;
-    const Vector3<S> rim_point = centre + b.r * b.circle(theta0);
     const fcl::Transform3<S> X_SW = pair.X_WS->inverse(Eigen::Isometry);
-    if (pair.shape->contains(Vector3<S>(X_SW * rim_point))) return Tried::kOverlap;
+    if (pair.shape->contains(Vector3<S>(X_SW * b.rimPoint(side, theta0)))) return Tried::kOverlap;
     // From the middle of the rim's normals at θ0 (between the end's and the side's); given up
-    // after kGuessSteps steps without a separating direction (F < 0), else run to its end, so
-    // the answer is as exact as the other features'.
+    // after kGuessSteps steps without a separating direction (F < 0), or at one along which the
+    // cone's apex, not the disc, supports B (the disc's answer there is not the cone's), else
+    // run to its end, so the answer is as exact as the other features'.
     const Vector3<S> normal = side * b.z + b.sideNormal(theta0);
     int steps = 0;
     auto hopeless = [&](const Probe<S>& p) {
@@ -390,7 +391,7 @@ std::optional<PairHit<S>> exactSeparated(const Pair<S>& pair, const Round<S>& b,
         discApart(*pair.shape, *pair.X_WS, centre, b.z, b.r, start.normal);
     if (disc && candidates.offer(*disc)) return candidates.certified();
     auto at = [&](S theta) {
-      const Vector3<S> p = centre + b.r * b.circle(theta);
+      const Vector3<S> p = b.rimPoint(side, theta);
       const PairHit<S> hit = pointHit(p);
       return Sample<S, PairHit<S>>{theta, hit.normal.dot(b.r * b.circleTangent(theta)), hit};
     };
@@ -539,7 +540,7 @@ PairHit<S> overlap(const Pair<S>& pair, const Round<S>& b, const PairHit<S>& sta
   std::vector<Vector3<S>> points;
   for (S side : sides) {
     for (int k = 0; k < kRimPoints; ++k) {
-      points.push_back(b.t + side * b.h * b.z + b.r * b.circle(S(2 * M_PI * k / kRimPoints)));
+      points.push_back(b.rimPoint(side, S(2 * M_PI * k / kRimPoints)));
     }
   }
   if (b.cone) points.push_back(apex);
