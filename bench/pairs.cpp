@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "bt_superellipsoid_shape.h"
+#include "fcl_superellipsoid/diagnostics.h"
 #include "fcl_superellipsoid/fcl_integration.h"
 #include "pair_construction.h"
 
@@ -229,11 +230,12 @@ double bullet(const Case& k) {
 struct Row {
   std::string kind, method;
   int bucket;
-  double us;         // median over repetitions of the mean time per query
+  double us;         // the mean of the fastest kKept passes, per query
   double max_error;  // × size, against the construction (separated) or ours (overlapping)
   double median_error;
   int failures;  // NaN, non-finite, exceptions
   int cases;
+  double evaluations;  // the superellipsoid's support or gauge evaluations per query
 };
 
 }  // namespace
@@ -285,6 +287,7 @@ int runPairs(int per_kind, const std::string& csv, const std::vector<std::string
           }
         }
         std::vector<double> answers(group.size()), passes;
+        shapeEvaluations() = 0;  // every pass makes the same evaluations
         for (int r = 0; r < kRepetitions; ++r) {
           const Clock::time_point t0 = Clock::now();
           for (std::size_t i = 0; i < group.size(); ++i) answers[i] = query(*group[i]);
@@ -292,7 +295,11 @@ int runPairs(int per_kind, const std::string& csv, const std::vector<std::string
         }
         std::sort(passes.begin(), passes.end());
         const double kept = std::accumulate(passes.begin(), passes.begin() + kKept, 0.0) / kKept;
-        Row row{kind, name, bucket, 1e6 * kept / double(group.size()), 0, 0, 0, int(group.size())};
+        const double evaluations =
+            double(shapeEvaluations()) / (double(kRepetitions) * double(group.size()));
+        Row row{kind,       name, bucket, 1e6 * kept / double(group.size()),
+                0,          0,    0,      int(group.size()),
+                evaluations};
         std::vector<double> errors;
         for (std::size_t i = 0; i < group.size(); ++i) {
           if (!std::isfinite(answers[i]) || std::abs(answers[i]) > 1e30) {
@@ -339,12 +346,32 @@ int runPairs(int per_kind, const std::string& csv, const std::vector<std::string
                   int(s[4]));
     }
   }
+  // Coal's protocol also counts iterations per bucket. libccd and Bullet report none, so the
+  // common count is the superellipsoid's support (or gauge) evaluations, which every method is
+  // made of (diagnostics.h → shapeEvaluations): one per GJK iteration and EPA expansion (two
+  // where the partner is a superellipsoid too), one per Newton step or point query of ours.
+  std::printf(
+      "\nThe superellipsoid's support or gauge evaluations per query, by bucket d/size:\n\n"
+      "| pair | method |");
+  for (double b : kBuckets) std::printf(" %g |", b);
+  std::printf("\n|---|---|");
+  for (std::size_t b = 0; b < std::size(kBuckets); ++b) std::printf("---:|");
+  std::printf("\n");
+  for (std::size_t i = 0; i < rows.size(); i += std::size(kBuckets)) {
+    std::printf("| %s | %s |", rows[i].kind.c_str(), rows[i].method.c_str());
+    for (std::size_t b = 0; b < std::size(kBuckets); ++b) {
+      std::printf(" %.1f |", rows[i + b].evaluations);
+    }
+    std::printf("\n");
+  }
   if (!csv.empty()) {
     std::ofstream out(csv);
-    out << "kind,method,bucket,us_per_query,max_error,median_error,failures,cases\n";
+    out << "kind,method,bucket,us_per_query,max_error,median_error,failures,cases,"
+           "evaluations_per_query\n";
     for (const Row& r : rows) {
       out << r.kind << ',' << r.method << ',' << kBuckets[r.bucket] << ',' << r.us << ','
-          << r.max_error << ',' << r.median_error << ',' << r.failures << ',' << r.cases << '\n';
+          << r.max_error << ',' << r.median_error << ',' << r.failures << ',' << r.cases << ','
+          << r.evaluations << '\n';
     }
     std::printf("\n(every bucket: %s)\n", csv.c_str());
   }

@@ -4,10 +4,11 @@
 #   scripts/test.sh --sanitize   clang, AddressSanitizer + UBSan, in build-asan/: the whole suite but
 #                                the packaging tests, and a smoke run of each fuzz target
 #   scripts/test.sh --tsan       gcc, ThreadSanitizer, in build-tsan/: the tests of what threads
-#                                share (thread safety, batched queries, the lazily computed rolling
-#                                radius, the FCL traversal that calls the batched queries, the
-#                                cloth and the bowl scenes on 1 and 2 threads, the interposer's
-#                                first calls); it builds only the test programs that hold them
+#                                share (thread safety, batched queries, the per-thread evaluation
+#                                count, the lazily computed rolling radius, the FCL traversal that
+#                                calls the batched queries, the cloth and the bowl scenes on 1 and
+#                                2 threads, the interposer's first calls); it builds only the test
+#                                programs that hold them
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=build
@@ -26,7 +27,7 @@ case "${1:-}" in
     build=build-tsan
     flags=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DFSE_SANITIZE_THREAD=ON -DFSE_BUILD_BENCH=OFF)
     targets=(--target test_shape test_threads test_batch test_fcl_glue test_interpose test_sim)
-    tests=(-R "ThreadSafety|Interpose.FirstCallsRace|BatchDistance|RollingRadiusIsComputedOnce|DirectionCoverIsBuiltOnce|FclIntegration|SameResultsForOneAndTwoThreads|OneAndTwoThreadsGiveIdenticalResults") ;;
+    tests=(-R "ThreadSafety|EvaluationsArePerThread|Interpose.FirstCallsRace|BatchDistance|RollingRadiusIsComputedOnce|DirectionCoverIsBuiltOnce|FclIntegration|SameResultsForOneAndTwoThreads|OneAndTwoThreadsGiveIdenticalResults") ;;
   "") ;;
   *) echo "usage: scripts/test.sh [--sanitize | --tsan]" >&2; exit 2 ;;
 esac

@@ -23,6 +23,7 @@
 #include <limits>
 
 #include "fcl_superellipsoid/superellipsoid.h"
+#include "shape/evaluation_count.h"
 
 namespace fcl_superellipsoid {
 namespace detail {
@@ -104,6 +105,7 @@ struct NestedNorm {
   }
 
   S value(const Vector3<S>& w) const {
+    countShapeEvaluation();
     const Vector3<S> u = w.cwiseProduct(scale);
     return pnorm2(pnorm2(u[0], u[1], p1, inv_p1), u[2], p2, inv_p2);
   }
@@ -122,6 +124,7 @@ struct NestedNorm {
     S norm;  // N = ‖(r, u3)‖_p2
   };
   Levels levels(const Vector3<S>& u) const {
+    countShapeEvaluation();  // every evaluation but value()'s comes here
     const S inf = std::numeric_limits<S>::infinity();
     const S m1 = std::max(u[0], u[1]), lo1 = std::min(u[0], u[1]);
     // log2(m1/u3) of the quotient, not as a difference of logarithms: its error stays an ulp
