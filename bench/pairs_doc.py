@@ -89,7 +89,9 @@ def main():
     if args.readme:
         replace_block(args.readme, "pairs",
                       f"{readme_table(os.path.join(args.out, 'pairs.csv'))}\n\n"
-                      f"Time per query and worst error × size (separated: against the construction); {stamp[1:-1]}")
+                      f"Time per query and worst error × size (separated: against the construction); the "
+                      f"iterations per distance bucket (the superellipsoid's support evaluations) are in "
+                      f"docs/pairs.md. {stamp[1:-1]}")
 
 
 if __name__ == "__main__":
