@@ -8,8 +8,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 
+#include "fcl_superellipsoid/diagnostics.h"
 #include "progress_bar.h"
 
 namespace fcl_superellipsoid {
@@ -124,12 +126,16 @@ std::vector<Row> runAccuracyTime(const RunConfig& config) {
       progress.advance(0, task + ": points and truth");
       const PointSet set = makePointSet(shape, side, config.points, config.reference_points,
                                         pointSeed(config.seed, shape, side));
-      // Untimed pass: warms caches and gives the answers to score.
+      // Untimed pass: warms caches, gives the answers to score and counts the evaluations.
       std::vector<Stats> stats;
+      std::vector<double> evaluations;
       for (const auto& method : methods) {
         std::vector<Answer> answers;
         answers.reserve(set.points.size());
+        shapeEvaluations() = 0;
         for (const Vector3<double>& x : set.points) answers.push_back(method->query(x));
+        const std::uint64_t count = shapeEvaluations();
+        evaluations.push_back(count > 0 ? double(count) / double(set.points.size()) : NAN);
         stats.push_back(scoreAnswers(answers, set, method->isSigned()));
       }
       progress.advance(1, task);
@@ -158,6 +164,7 @@ std::vector<Row> runAccuracyTime(const RunConfig& config) {
                 int(set.points.size()),
                 stats[m],
                 1e6 * median(seconds[m]) / set.points.size(),
+                evaluations[m],
                 NAN,
                 method.memoryBytes(),
                 1e3 * method.setupSeconds()};

@@ -42,6 +42,9 @@ struct Row {
   int points;
   Stats stats;
   double us_per_query;        // median over repetitions
+  double evaluations;         // the superellipsoid's support or gauge evaluations per query
+                              // (diagnostics.h → shapeEvaluations); NaN where a method makes
+                              // none (FCL's mesh, its polytope, its ellipsoid)
   double speedup_vs_mesh272;  // FCL mesh 272 v time / this time, same shape and side (or NaN)
   std::size_t memory_bytes;
   double setup_ms;  // building the representation (tessellation + BVH, ...)

@@ -116,13 +116,20 @@ def ratio_tables(rows):
         e, p = find(rows, shape, side, "Exact", 1e-9), find(rows, shape, side, "Paper", 1e-3)
         return e["us_per_query"] / p["us_per_query"] if e and p else None
 
-    for title, fn in (("Speedup of Exact (1e-12) over FCL's 272-vertex mesh (> 1: Exact is faster)", exact_over_mesh),
-                      ("Time of Exact at 1e-9 / Paper at 1e-3 (< 1: Exact is faster)", exact_over_paper)):
+    def exact_evaluations(shape, side):
+        r = find(rows, shape, side, "Exact", 1e-9)
+        return r.get("evaluations_per_query") if r else None
+
+    for title, fn, fmt in (("Speedup of Exact (1e-12) over FCL's 272-vertex mesh (> 1: Exact is faster)", exact_over_mesh, "{:.2f}"),
+                           ("Time of Exact at 1e-9 / Paper at 1e-3 (< 1: Exact is faster)", exact_over_paper, "{:.2f}"),
+                           ("Evaluations of the shape's support function or gauge per query, Exact at 1e-9 (its Newton "
+                            "steps, starts and certificates; `shapeEvaluations()`, diagnostics.h): where the time of the "
+                            "ratios above goes", exact_evaluations, "{:.1f}")):
         out.append(f"\n{title}:\n")
         out.append("| shape | " + " | ".join(sides) + " |")
         out.append("|---" * (len(sides) + 1) + "|")
         for shape in shapes:
-            out.append(f"| {shape} | " + " | ".join(num(fn(shape, side), "{:.2f}") for side in sides) + " |")
+            out.append(f"| {shape} | " + " | ".join(num(fn(shape, side), fmt) for side in sides) + " |")
     return "\n".join(out)
 
 

@@ -94,6 +94,7 @@ const std::vector<Field>& fields() {
       {"nonconv_err", [](const Row& r) { return json(r.stats.nonconv_err); }},
       {"avg_error_estimate", [](const Row& r) { return json(r.stats.avg_estimate); }},
       {"us_per_query", [](const Row& r) { return json(r.us_per_query); }},
+      {"evaluations_per_query", [](const Row& r) { return json(r.evaluations); }},
       {"speedup_vs_mesh272", [](const Row& r) { return json(r.speedup_vs_mesh272); }},
       {"memory_bytes", [](const Row& r) { return json(r.memory_bytes); }},
       {"setup_ms", [](const Row& r) { return json(r.setup_ms); }},
@@ -275,6 +276,12 @@ void printSpeedRatios(const std::vector<Row>& rows, std::FILE* out) {
          const Row* e = find(rows, shape, side, kExact, 1e-9);
          const Row* p = find(rows, shape, side, kPaper, 1e-3);
          return e && p ? e->us_per_query / p->us_per_query : NAN;
+       }},
+      {"Evaluations of the shape per query, Exact 1e-9 (support or gauge; Newton steps, starts "
+       "and certificates)",
+       [&](const std::string& shape, const std::string& side) {
+         const Row* e = find(rows, shape, side, kExact, 1e-9);
+         return e ? e->evaluations : NAN;
        }},
   };
   for (const Ratio& ratio : ratios) {

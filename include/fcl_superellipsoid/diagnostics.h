@@ -26,13 +26,14 @@ FSE_EXPORT VertexTraversalStats& vertexTraversalStats();
 
 /// Evaluations of a superellipsoid's gauge or support function made by this thread, accumulated
 /// until the caller resets them (`shapeEvaluations() = 0;`): the unit of work every query here
-/// is made of. One evaluation is one step of the Exact point solver's Newton iterations or of
-/// the pairs' searches, one support call of a GJK iteration or an EPA expansion (FCL's libccd path
-/// and Bullet's, through gjk_support.h and Superellipsoid::supportPoint), one inside test.
-/// Each costs a few exp2 and log2 calls, so the count per query says where a query's time goes
-/// and compares methods by their iterations. Not counted: the batched SIMD kernel's
-/// lanes (batch_distance.h), the Radial and Paper solvers (their own iterations), a partner
-/// shape's own support calls (a box's, a mesh's).
+/// is made of. One evaluation is one call of Superellipsoid's gauge, gaugeGradient, normal,
+/// radialProjection or supportPoint (the Radial and Paper solvers are made of these), one
+/// step of the Exact solver's Newton iterations or of the pairs' searches, one support call of
+/// a GJK iteration or an EPA expansion (FCL's libccd path and Bullet's, through gjk_support.h
+/// and Superellipsoid::supportPoint). Each costs a few exp2 and log2 (or pow) calls, so the
+/// count per query says where a query's time goes and compares methods by their iterations.
+/// Not counted: the batched SIMD kernel's lanes (batch_distance.h) and a partner shape's own
+/// support calls (a box's, a mesh's).
 FSE_EXPORT std::uint64_t& shapeEvaluations();
 
 }  // namespace fcl_superellipsoid
