@@ -21,9 +21,11 @@
 // of one level the union of four of the next.
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "fcl_superellipsoid/superellipsoid.h"
+#include "shape/nested_norm.h"
 
 namespace fcl_superellipsoid {
 namespace detail {
@@ -34,6 +36,8 @@ class DirectionCover {
   /// The coarsest grid per cube face, and the number of levels (each halves the cells' size).
   static constexpr int kCoarse = 4;
   static constexpr int kLevels = 3;
+  /// The finest level's number of cells: three faces of (kCoarse·2^(kLevels−1))² cells.
+  static constexpr std::size_t kFinestCells = 3 * kCoarse * kCoarse << (2 * (kLevels - 1));
 
   /// Evaluates the shape's support point in every cell's centre direction (1,008 of them; about
   /// 0.1 ms), each pulled toward the centre by a few ulps so that it lies inside the shape
@@ -52,6 +56,14 @@ class DirectionCover {
   /// where y or need is not finite.
   S capRadius(const Vector3<S>& y, const Vector3<S>& n_star, S need, S limit) const;
 
+  /// Whether the same claim holds with the radius `target`, smaller than capRadius's: the
+  /// finest failing cells that reach beyond `target` from n_star are split further, up to
+  /// kRefineLevels levels below the stored ones, their support points evaluated on the spot
+  /// (four per split; none are kept). False as soon as a cell of the last level still fails
+  /// beyond `target`.
+  bool capWithin(const Vector3<S>& y, const Vector3<S>& n_star, S need, S target) const;
+  static constexpr int kRefineLevels = 2;
+
  private:
   /// One level's cells, field by field (the loops over them vectorise). Cell p of a level has
   /// its four children at 4p … 4p + 3 on the next; the coarsest level's cell (face, i, j) is
@@ -67,7 +79,12 @@ class DirectionCover {
     void resize(std::size_t n);
   };
 
+  /// The finest level's failing cells for (y, need), written to `failing` (room for every
+  /// finest cell); returns their number.
+  std::size_t failingFinest(const Vector3<S>& y, S need, std::uint16_t* failing) const;
+
   std::array<Level, kLevels> levels_;
+  NestedNorm<S> support_;  // the shape's support function, for the cells split on the spot
 };
 
 extern template class DirectionCover<float>;

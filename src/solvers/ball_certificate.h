@@ -237,8 +237,17 @@ bool directionCoverCertified(const DirectionCover<S>& cover, const NestedNorm<S>
   const S need = distance + (centre - y).norm();
   const S theta = cover.capRadius(y, normal, need, cap_limit);
   if (!(theta <= cap_limit)) return false;
-  return hessianCapCertified(gauge, nearest, normal, gradient_at_n, distance,
-                             S(2.01) * distance * theta);
+  auto slab = [&](S radius) {
+    return hessianCapCertified(gauge, nearest, normal, gradient_at_n, distance,
+                               S(2.01) * distance * radius);
+  };
+  if (slab(theta)) return true;
+  // The stored cells' cap is too wide for the slab: a half or a quarter of it may do, if the
+  // cells that reach beyond it pass once split further (DirectionCover::capWithin).
+  for (const S target : {S(0.5) * theta, S(0.25) * theta}) {
+    if (slab(target)) return cover.capWithin(y, normal, need, target);
+  }
+  return false;
 }
 
 }  // namespace detail

@@ -119,6 +119,62 @@ TEST(DirectionCover, CapHoldsEveryLowDirection) {
   EXPECT_GT(low_directions, 1000) << "the sample should hold directions inside the caps";
 }
 
+// The claim of capWithin: where it says a target radius holds (a half and a quarter of
+// capRadius's, the solver's two tries), every first-octant direction n where F(n) < need lies
+// within the target of n_star. Checked as capRadius's claim above, with h in long double over
+// 8,000 lattice directions; and where the lattice itself holds a low direction beyond the
+// target, capWithin must have said no.
+TEST(DirectionCover, RefinedCapHoldsEveryLowDirection) {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const std::vector<test::V3> directions = firstOctantDirections(64000);
+  int tries = 0, held = 0, refused_by_lattice = 0;
+  for (const auto& p : kShapes) {
+    const Superellipsoid<double> shape{p[0], p[1], p[2], p[3], p[4]};
+    SCOPED_TRACE(test::describe(shape));
+    const test::V3 radii(p[0], p[1], p[2]);
+    std::vector<long double> h_of(directions.size());
+    for (std::size_t i = 0; i < directions.size(); ++i) {
+      h_of[i] = test::superellipsoidSupport(radii, p[3], p[4], directions[i]);
+    }
+    const detail::DirectionCover<double>& cover = shape.directionCover();
+    for (int k = 0; k < 16; ++k) {
+      const Vector3<double> x = shape.radii().cwiseProduct(Vector3<double>(u(rng), u(rng), u(rng)));
+      if (!shape.contains(x)) continue;
+      const Vector3<double> y = x.cwiseAbs();
+      const PointDistanceResult<double> r = pointDistance(shape, y);
+      const Vector3<double> n_star = r.normal.cwiseAbs();
+      for (double extra : {0.0, 1e-3, 0.03}) {
+        const double need = -r.distance + extra * shape.size();
+        const double theta = cover.capRadius(y, n_star, need, 2.0);
+        if (!std::isfinite(theta)) continue;
+        // The farthest low direction of the lattice.
+        double farthest = 0;
+        for (std::size_t i = 0; i < directions.size(); ++i) {
+          const test::V3& n = directions[i];
+          if (h_of[i] - n.dot(y.cast<long double>()) >= need) continue;
+          farthest = std::max(farthest, double((n - n_star.cast<long double>()).norm()));
+        }
+        for (double fraction : {0.5, 0.25}) {
+          const double target = fraction * theta;
+          const bool within = cover.capWithin(y, n_star, need, target);
+          ++tries;
+          if (within) {
+            ++held;
+            ASSERT_LE(farthest, target) << "y = " << y.transpose() << ", need = " << need;
+          } else if (farthest > target) {
+            ++refused_by_lattice;
+          }
+        }
+      }
+    }
+  }
+  std::printf("[ capWithin ] %d tries: %d held, %d refused with a low lattice direction beyond\n",
+              tries, held, refused_by_lattice);
+  EXPECT_GT(held, tries / 4) << "the refinement should hold often enough to be tested";
+  EXPECT_GT(refused_by_lattice, 0) << "some targets should be too small for the lattice itself";
+}
+
 // The whole certificate on stationary points by construction: Q = N − d·n for a surface point
 // N of the first octant and its normal n, d from shallow to beyond the smallest radius (N then
 // mostly a local minimum or a saddle, not the global answer). Where the cap is found and the
