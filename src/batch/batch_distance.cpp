@@ -159,7 +159,7 @@ class VertexSolver {
                  options.distance.max_iterations,
                  // Only the SIMD kernel reads it; its first computation per shape costs
                  // milliseconds, which a Paper or Radial batch should not pay.
-                 simd_ ? shape.minRadiusOfCurvature() : S(0)} {
+                 simd_ ? shape.minRadiusOfCurvature() : S(0), &shape} {
     validateOptions(options.distance);
     if (options.threads < 0) {
       detail::throwInvalidArgument(function, "options.threads must be >= 0", options.threads);

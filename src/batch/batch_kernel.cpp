@@ -652,30 +652,40 @@ void SolveOutsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
   StoreAnswer(d, c, solved, inside, lanes, i);
 }
 
-/// ball_certificate.h's Hessian-ball certificate on the lanes of `lanes`, one lane at a time
-/// through the scalar solver's own function: converged inside candidates `c` at `distance` from
-/// the queries `y`.
+/// ball_certificate.h's certificates on the lanes of `lanes`, one lane at a time through the
+/// scalar solver's own functions (ExactSolver::searchInside): the Hessian ball, and where it
+/// fails the direction cover's, on at most exact_rules::kCoverAttempts answers per lane
+/// (`cover_attempts`, per lane); converged inside candidates `c` at `distance` from the
+/// queries `y`.
 template <class D>
-hn::Mask<D> HessianBallLanes(D d, const LaneProblem<hn::TFromD<D>>& problem, const Vec3<D>& y,
-                             const Candidate<D>& c, hn::Vec<D> distance, hn::Mask<D> lanes) {
+hn::Mask<D> CertifiedLanes(D d, const LaneProblem<hn::TFromD<D>>& problem, const Vec3<D>& y,
+                           const Candidate<D>& c, hn::Vec<D> distance, hn::Mask<D> lanes,
+                           int* cover_attempts) {
   using T = hn::TFromD<D>;
   // After dual iterations a candidate's gradient is its start's: ∇G at the point is n/(n·N)
   // (the gauge's gradient at the boundary point of normal n; ExactSolver::newtonDual).
   const Vec3<D> gradient = Times(hn::Div(hn::Set(d, T(1)), Dot(c.normal, c.point)), c.normal);
-  T lane[12][kMaxLanes];
-  const hn::Vec<D> values[12] = {
-      y.x,        y.y,       y.z,        c.point.x,
-      c.point.y,  c.point.z, gradient.x, gradient.y,
-      gradient.z, distance,  c.error,    hn::IfThenElseZero(lanes, hn::Set(d, T(1)))};
-  for (int k = 0; k < 12; ++k) hn::StoreU(values[k], d, lane[k]);
+  T lane[15][kMaxLanes];
+  const hn::Vec<D> values[15] = {
+      y.x,        y.y,        y.z,        c.point.x,
+      c.point.y,  c.point.z,  gradient.x, gradient.y,
+      gradient.z, distance,   c.error,    hn::IfThenElseZero(lanes, hn::Set(d, T(1))),
+      c.normal.x, c.normal.y, c.normal.z};
+  for (int k = 0; k < 15; ++k) hn::StoreU(values[k], d, lane[k]);
   for (std::size_t k = 0; k < hn::Lanes(d); ++k) {
     if (lane[11][k] == T(0)) continue;
     auto vector = [&](int row) {
       return Vector3<T>(lane[row][k], lane[row + 1][k], lane[row + 2][k]);
     };
-    const bool ball = hessianBallCertified(problem.primal, vector(0), vector(3), vector(6),
-                                           lane[9][k], lane[10][k]);
-    lane[11][k] = ball ? T(1) : T(0);
+    bool holds = hessianBallCertified(problem.primal, vector(0), vector(3), vector(6), lane[9][k],
+                                      lane[10][k]);
+    if (!holds && cover_attempts[k] < rules::kCoverAttempts) {
+      ++cover_attempts[k];
+      holds = directionCoverCertified(problem.shape->directionCover(), problem.primal, vector(0),
+                                      vector(3), vector(12), vector(6), lane[9][k],
+                                      T(rules::kCoverCapLimit));
+    }
+    lane[11][k] = holds ? T(1) : T(0);
   }
   return hn::Gt(hn::LoadU(d, lane[11]), hn::Zero(d));
 }
@@ -709,9 +719,10 @@ void SolveInsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
   Candidate<D> best = solver.refine(radial, work, &all_converged);
   // Lanes whose answer is already certified global need no further start: the rolling ball
   // (exact_rules::certifiedGlobal, lane-wise: d + tolerance ≤ the rolling radius), else the
-  // Hessian ball (ball_certificate.h), lane by lane through the scalar solver's own function.
-  // `fresh`: the lanes whose candidate is new since the last check (the Hessian ball is tested
-  // once per candidate, as in ExactSolver::searchInside).
+  // Hessian ball and the direction cover (ball_certificate.h), lane by lane through the scalar
+  // solver's own functions. `fresh`: the lanes whose candidate is new since the last check (the
+  // balls are tested once per candidate, as in ExactSolver::searchInside).
+  int cover_attempts[kMaxLanes] = {};
   const auto certified = [&](const Candidate<D>& c, M converged, M fresh) {
     const Vec3<D> to_c = Minus(y, c.point);
     const V distance = hn::Sqrt(Dot(to_c, to_c));
@@ -719,7 +730,8 @@ void SolveInsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
     const M rolling = hn::And(converged, hn::Le(reach, hn::Set(d, problem.rolling_radius)));
     const M open = hn::And(fresh, hn::AndNot(rolling, converged));
     if (hn::AllFalse(d, open)) return rolling;
-    return hn::Or(rolling, hn::And(open, HessianBallLanes(d, problem, y, c, distance, open)));
+    return hn::Or(rolling,
+                  hn::And(open, CertifiedLanes(d, problem, y, c, distance, open, cover_attempts)));
   };
   M done = certified(best, all_converged, work);
   M more = hn::AndNot(done, work);

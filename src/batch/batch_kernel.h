@@ -16,7 +16,9 @@
 //  - inside pass: Newton from the radial projection and the three axis projections (the
 //    scalar solver's first four starts), the latter only on lanes whose answer is not yet
 //    certified global (the rolling ball, exact_rules::certifiedGlobal, on the lanes; else the
-//    Hessian ball, solvers/ball_certificate.h, lane by lane); the nearest converged answer wins.
+//    Hessian ball and then the direction cover, solvers/ball_certificate.h, lane by lane, the
+//    cover on at most exact_rules::kCoverAttempts answers per lane); the nearest converged
+//    answer wins.
 // A lane goes back to the scalar solver (kLaneScalar) whenever the scalar solver would do
 // more than that: a start that converges in neither formulation (the scalar solver then tries
 // further starts and, outside, the bracketed projection), an inside query near a coordinate plane
@@ -52,6 +54,9 @@ struct LaneProblem {
   S size;       // the largest radius
   int max_iterations;  // the caller's cap on all starts together
   S rolling_radius;    // Superellipsoid::minRadiusOfCurvature(): the inside certificate's radius
+  // The shape, for its direction cover (the inside certificate where the balls fail; built on
+  // first use, Superellipsoid::directionCover).
+  const Superellipsoid<S>* shape;
 };
 
 enum LaneStatus : std::int32_t {

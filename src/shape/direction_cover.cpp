@@ -20,20 +20,17 @@ void DirectionCover<S>::Level::resize(std::size_t n) {
 namespace {
 
 /// One cell (i, j) of the k × k grid on the cube face where component `face` is 1: its unit
-/// centre direction a, the support point s there (pulled a few ulps toward the centre, so that
-/// it lies inside the shape despite rounding: the bounds need points of the shape, not near it),
-/// and its half-angle θ about a, the geometry in double, rounded outward into S (the cosine
-/// down, sine and chord up).
+/// centre direction a and its half-angle θ about a, computed in double and rounded outward into
+/// S (the cosine down, sine and chord up).
 template <typename S>
 struct Cell {
-  Vector3<S> a, s;
+  Vector3<S> a;
   S cos_t, sin2_t, chord;
 };
 
 template <typename S>
-Cell<S> makeCell(const NestedNorm<S>& support, int face, int i, int j, int k) {
+Cell<S> cellGeometry(int face, int i, int j, int k) {
   const double slack = 16 * double(std::numeric_limits<S>::epsilon());
-  const S inward = S(1) - S(64) * std::numeric_limits<S>::epsilon();
   // The direction through the point (u, v) of the face.
   auto direction = [face](double u, double v) {
     Eigen::Vector3d d;
@@ -51,14 +48,48 @@ Cell<S> makeCell(const NestedNorm<S>& support, int face, int i, int j, int k) {
       cos_t = std::min(cos_t, a.dot(direction(double(i + ci) / k, double(j + cj) / k)));
     }
   }
-  Cell<S> cell;
-  cell.a = a.cast<S>();
-  // ∇h is 0-homogeneous: the largest component of a is its face's (Superellipsoid::supportPoint).
-  cell.s = inward * support.gradient(cell.a / cell.a[face]);
-  cell.cos_t = S(cos_t - slack);
-  cell.sin2_t = S(std::max(0.0, 1 - cos_t * cos_t) + slack);
-  cell.chord = S(std::sqrt(2 * (1 - cos_t)) + slack);
+  return {a.cast<S>(), S(cos_t - slack), S(std::max(0.0, 1 - cos_t * cos_t) + slack),
+          S(std::sqrt(2 * (1 - cos_t)) + slack)};
+}
+
+/// The cells of the grids split below the stored finest one (DirectionCover::capWithin) on the
+/// face where component 0 is 1: grid r (0 … refine − 1) is (finest·2^(r+1))², cell (i, j) at
+/// i·k + j. They do not depend on the shape: built once per process, on first use.
+template <typename S, int finest, int refine>
+const std::array<std::vector<Cell<S>>, refine>& splitGrids() {
+  static const std::array<std::vector<Cell<S>>, refine> grids = [] {
+    std::array<std::vector<Cell<S>>, refine> out;
+    for (int r = 0; r < refine; ++r) {
+      const int k = finest << (r + 1);
+      out[r].reserve(std::size_t(k) * k);
+      for (int i = 0; i < k; ++i) {
+        for (int j = 0; j < k; ++j) out[r].push_back(cellGeometry<S>(0, i, j, k));
+      }
+    }
+    return out;
+  }();
+  return grids;
+}
+
+/// A face-0 cell moved to `face` (cellGeometry's direction: component `face` is 1, the next two
+/// cyclically are u and v).
+template <typename S>
+Cell<S> onFace(Cell<S> cell, int face) {
+  const Vector3<S> a0 = cell.a;
+  cell.a[face] = a0[0];
+  cell.a[(face + 1) % 3] = a0[1];
+  cell.a[(face + 2) % 3] = a0[2];
   return cell;
+}
+
+/// The support point of a cell's centre direction a (largest component a[face]: ∇h is
+/// 0-homogeneous, as in Superellipsoid::supportPoint), pulled a few ulps toward the centre so
+/// that it lies inside the shape despite rounding (the bounds need points of the shape, not
+/// near it).
+template <typename S>
+Vector3<S> supportInside(const NestedNorm<S>& support, const Vector3<S>& a, int face) {
+  const S inward = S(1) - S(64) * std::numeric_limits<S>::epsilon();
+  return inward * support.gradient(a / a[face]);
 }
 
 /// A cell passes if its lower bound of F = h − n·y over the cell reaches `need`: with w = s − y,
@@ -101,15 +132,16 @@ DirectionCover<S>::DirectionCover(const Superellipsoid<S>& shape)
     cells.resize(squares.size());
     for (std::size_t p = 0; p < squares.size(); ++p) {
       const Square& q = squares[p];
-      const Cell<S> c = makeCell(support_, q.face, q.i, q.j, k);
+      const Cell<S> c = cellGeometry<S>(q.face, q.i, q.j, k);
+      const Vector3<S> support = supportInside(support_, c.a, q.face);
       cells.ax[p] = c.a[0];
       cells.ay[p] = c.a[1];
       cells.az[p] = c.a[2];
-      cells.sx[p] = c.s[0];
-      cells.sy[p] = c.s[1];
-      cells.sz[p] = c.s[2];
-      cells.h[p] = c.a.dot(c.s);
-      cells.ss[p] = c.s.squaredNorm();
+      cells.sx[p] = support[0];
+      cells.sy[p] = support[1];
+      cells.sz[p] = support[2];
+      cells.h[p] = c.a.dot(support);
+      cells.ss[p] = support.squaredNorm();
       cells.cos_t[p] = c.cos_t;
       cells.sin2_t[p] = c.sin2_t;
       cells.chord[p] = c.chord;
@@ -182,64 +214,84 @@ std::size_t DirectionCover<S>::failingFinest(const Vector3<S>& y, S need,
 }
 
 template <typename S>
-S DirectionCover<S>::capRadius(const Vector3<S>& y, const Vector3<S>& n_star, S need,
-                               S limit) const {
-  const S beyond = std::numeric_limits<S>::infinity();
-  if (!(y.allFinite() && n_star.allFinite() && std::isfinite(need))) return beyond;
-  std::array<std::uint16_t, kFinestCells> failing;
-  const std::size_t count = failingFinest(y, need, failing.data());
+typename DirectionCover<S>::Cap DirectionCover<S>::cap(const Vector3<S>& y,
+                                                       const Vector3<S>& n_star, S need,
+                                                       S limit) const {
+  Cap out;
+  out.radius = std::numeric_limits<S>::infinity();
+  out.count = 0;
+  if (!(y.allFinite() && n_star.allFinite() && std::isfinite(need))) return out;
+  out.count = failingFinest(y, need, out.failing.data());
   const Level& finest = levels_[kLevels - 1];
   S radius = S(0);
-  for (std::size_t k = 0; k < count; ++k) {
-    const std::size_t p = failing[k];
+  for (std::size_t k = 0; k < out.count; ++k) {
+    const std::size_t p = out.failing[k];
     const Vector3<S> a(finest.ax[p], finest.ay[p], finest.az[p]);
     radius = std::max(radius, (a - n_star).norm() + finest.chord[p]);
-    if (radius > limit) return beyond;
+    if (radius > limit) return out;
   }
-  return radius;
+  out.radius = radius;
+  return out;
 }
 
 template <typename S>
-bool DirectionCover<S>::capWithin(const Vector3<S>& y, const Vector3<S>& n_star, S need,
-                                  S target) const {
-  if (!(y.allFinite() && n_star.allFinite() && std::isfinite(need) && target >= S(0))) {
-    return false;
-  }
+S DirectionCover<S>::capRadius(const Vector3<S>& y, const Vector3<S>& n_star, S need,
+                               S limit) const {
+  return cap(y, n_star, need, limit).radius;
+}
+
+template <typename S>
+bool DirectionCover<S>::capWithin(const Cap& cap, const Vector3<S>& y, const Vector3<S>& n_star,
+                                  S need, S target) const {
+  if (!(std::isfinite(cap.radius) && target >= S(0))) return false;
   const S yy = y.squaredNorm();
-  // A failing cell (face, i, j) of a k × k grid that reaches beyond `target`: split into its
-  // four children of the 2k × 2k grid, `levels` more times at most.
-  auto within = [&](auto& self, int face, int i, int j, int k, int levels) -> bool {
+  // Whether the bound with the point s of the shape reaches `need` over cell c.
+  auto passes = [&](const Cell<S>& c, const Vector3<S>& s) {
+    return boundReaches(c.a.dot(s) - c.a.dot(y), s.dot(y), s.squaredNorm(), yy, c.cos_t, c.sin2_t,
+                        need);
+  };
+  // A failing cell (face, i, j) of a k × k grid that reaches beyond `target`, with its support
+  // point s: split into its four children of the 2k × 2k grid, `levels` more times at most.
+  // A child is first tried with its parent's support point (any point of the shape bounds h
+  // from below; a child far from n* often passes with it), and only then with its own.
+  constexpr int kFinest = kCoarse << (kLevels - 1);
+  constexpr int kTabled = kRefineLevels - 1;
+  const auto& grids = splitGrids<S, kFinest, kTabled>();
+  auto within = [&](auto& self, int face, int i, int j, int k, int levels,
+                    const Vector3<S>& s) -> bool {
     if (levels == 0) return false;
+    const int r = kRefineLevels - levels;
     for (int di = 0; di < 2; ++di) {
       for (int dj = 0; dj < 2; ++dj) {
-        const Cell<S> c = makeCell(support_, face, 2 * i + di, 2 * j + dj, 2 * k);
-        const S along = c.a.dot(c.s) - c.a.dot(y);
-        if (boundReaches(along, c.s.dot(y), c.s.squaredNorm(), yy, c.cos_t, c.sin2_t, need)) {
-          continue;
-        }
-        if ((c.a - n_star).norm() + c.chord <= target) continue;
-        if (!self(self, face, 2 * i + di, 2 * j + dj, 2 * k, levels - 1)) return false;
+        const int ci = 2 * i + di, cj = 2 * j + dj;
+        const Cell<S> c = r < kTabled ? onFace(grids[r][std::size_t(ci) * (2 * k) + cj], face)
+                                      : cellGeometry<S>(face, ci, cj, 2 * k);
+        if ((c.a - n_star).norm() + c.chord <= target || passes(c, s)) continue;
+        const Vector3<S> own = supportInside(support_, c.a, face);
+        if (passes(c, own)) continue;
+        if (!self(self, face, ci, cj, 2 * k, levels - 1, own)) return false;
       }
     }
     return true;
   };
-  std::array<std::uint16_t, kFinestCells> failing;
-  const std::size_t count = failingFinest(y, need, failing.data());
   const Level& finest = levels_[kLevels - 1];
   // The cells reaching beyond `target`, nearest first: they are the likeliest to fail.
-  std::array<std::pair<S, std::uint16_t>, kFinestCells> beyond;
+  struct Beyond {  // trivial, so the array is not zeroed on every call
+    S reach;
+    std::uint16_t cell;
+  };
+  std::array<Beyond, kFinestCells> beyond;
   std::size_t beyond_count = 0;
-  for (std::size_t k = 0; k < count; ++k) {
-    const std::size_t p = failing[k];
+  for (std::size_t k = 0; k < cap.count; ++k) {
+    const std::size_t p = cap.failing[k];
     const Vector3<S> a(finest.ax[p], finest.ay[p], finest.az[p]);
     const S reach = (a - n_star).norm() + finest.chord[p];
-    if (reach > target) beyond[beyond_count++] = {reach, failing[k]};
+    if (reach > target) beyond[beyond_count++] = {reach, cap.failing[k]};
   }
   std::sort(beyond.begin(), beyond.begin() + beyond_count,
-            [](const auto& l, const auto& r) { return l.first < r.first; });
-  constexpr int kFinest = kCoarse << (kLevels - 1);
+            [](const Beyond& l, const Beyond& r) { return l.reach < r.reach; });
   for (std::size_t k = 0; k < beyond_count; ++k) {
-    const std::size_t p = beyond[k].second;
+    const std::size_t p = beyond[k].cell;
     // Its (face, i, j): the coarse cell (face·kCoarse + i)·kCoarse + j, then per level the child
     // 2·di + dj, from the coarsest level's digits down.
     std::size_t rest = p;
@@ -253,7 +305,8 @@ bool DirectionCover<S>::capWithin(const Vector3<S>& y, const Vector3<S>& n_star,
     const int face = int(rest / (kCoarse * kCoarse));
     i += int(rest / kCoarse % kCoarse) << (kLevels - 1);
     j += int(rest % kCoarse) << (kLevels - 1);
-    if (!within(within, face, i, j, kFinest, kRefineLevels)) return false;
+    const Vector3<S> s(finest.sx[p], finest.sy[p], finest.sz[p]);
+    if (!within(within, face, i, j, kFinest, kRefineLevels, s)) return false;
   }
   return true;
 }

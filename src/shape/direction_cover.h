@@ -14,11 +14,12 @@
 //    angle φ from a, F(n) ≥ ‖w‖·cos(φ + θ). The cells where that bound stays below the
 //    answer's distance (refined three levels deep) lie within `capRadius` of its normal; the
 //    other half, ball_certificate.h's Hessian bound over the surface near the answer, covers
-//    them.
+//    them. Where that cap is too wide for the Hessian bound, `capWithin` splits the cells
+//    beyond a smaller radius further, with support points evaluated per query.
 //
 // Cells: the first octant's directions, mapped onto the three faces of the unit cube (the face
-// of the largest component), each face a k × k grid; k = 4, 8, 16 on the three levels, a cell
-// of one level the union of four of the next.
+// of the largest component), each face a k × k grid; k = 4, 8, 16 on the three stored levels
+// (32, 64, 128 split per query), a cell of one level the union of four of the next.
 
 #include <array>
 #include <cstdint>
@@ -56,13 +57,21 @@ class DirectionCover {
   /// where y or need is not finite.
   S capRadius(const Vector3<S>& y, const Vector3<S>& n_star, S need, S limit) const;
 
-  /// Whether the same claim holds with the radius `target`, smaller than capRadius's: the
-  /// finest failing cells that reach beyond `target` from n_star are split further, up to
+  /// capRadius's finest failing cells and radius, for capWithin to go on from.
+  struct Cap {
+    S radius;           // as capRadius; +∞ beyond its limit
+    std::size_t count;  // the finest level's failing cells, in `failing`
+    std::array<std::uint16_t, kFinestCells> failing;
+  };
+  Cap cap(const Vector3<S>& y, const Vector3<S>& n_star, S need, S limit) const;
+
+  /// Whether the same claim holds with the radius `target`, smaller than the cap's: the finest
+  /// failing cells that reach beyond `target` from n_star are split further, up to
   /// kRefineLevels levels below the stored ones, their support points evaluated on the spot
-  /// (four per split; none are kept). False as soon as a cell of the last level still fails
-  /// beyond `target`.
-  bool capWithin(const Vector3<S>& y, const Vector3<S>& n_star, S need, S target) const;
-  static constexpr int kRefineLevels = 2;
+  /// (none are kept). False as soon as a cell of the last level still fails beyond `target`.
+  bool capWithin(const Cap& cap, const Vector3<S>& y, const Vector3<S>& n_star, S need,
+                 S target) const;
+  static constexpr int kRefineLevels = 3;
 
  private:
   /// One level's cells, field by field (the loops over them vectorise). Cell p of a level has

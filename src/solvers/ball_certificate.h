@@ -223,8 +223,9 @@ bool hessianCapCertified(const NestedNorm<S>& gauge, const Vector3<S>& nearest,
 /// The direction cover's certificate (docs/math.md → "The direction cover") for a converged
 /// inside answer N (normal n, gauge gradient there) at distance d from y, all in the first
 /// octant: the ball B(Q', d) with Q' = N − d·n lies inside the shape if every direction with
-/// F(n) = h(n) − n·y < d + ‖y − Q'‖ lies within θ of n (DirectionCover::capRadius, given up
-/// beyond `cap_limit`) and the Hessian bound holds over the slab of r = 2·d·θ at N
+/// F(n) = h(n) − n·y < d + ‖y − Q'‖ lies within θ of n (DirectionCover::cap, given up beyond
+/// `cap_limit`, or a fraction of it by DirectionCover::capWithin where the stored cap's slab
+/// fails) and the Hessian bound holds over the slab of r = 2·d·θ at N
 /// (hessianCapCertified; 2.01 covers the chord's rounding). Needs Q' in the first octant (the
 /// mirror argument); a rounding outside it is not certified.
 template <typename S>
@@ -235,17 +236,18 @@ bool directionCoverCertified(const DirectionCover<S>& cover, const NestedNorm<S>
   const Vector3<S> centre = nearest - distance * normal;
   if (!(centre.minCoeff() >= S(0))) return false;
   const S need = distance + (centre - y).norm();
-  const S theta = cover.capRadius(y, normal, need, cap_limit);
+  const typename DirectionCover<S>::Cap cap = cover.cap(y, normal, need, cap_limit);
+  const S theta = cap.radius;
   if (!(theta <= cap_limit)) return false;
   auto slab = [&](S radius) {
     return hessianCapCertified(gauge, nearest, normal, gradient_at_n, distance,
                                S(2.01) * distance * radius);
   };
   if (slab(theta)) return true;
-  // The stored cells' cap is too wide for the slab: a half or a quarter of it may do, if the
-  // cells that reach beyond it pass once split further (DirectionCover::capWithin).
-  for (const S target : {S(0.5) * theta, S(0.25) * theta}) {
-    if (slab(target)) return cover.capWithin(y, normal, need, target);
+  // The stored cells' cap is too wide for the slab: a half, a quarter or an eighth of it may do,
+  // if the cells that reach beyond it pass once split further (DirectionCover::capWithin).
+  for (const S target : {S(0.5) * theta, S(0.25) * theta, S(0.125) * theta}) {
+    if (slab(target)) return cover.capWithin(cap, y, normal, need, target);
   }
   return false;
 }

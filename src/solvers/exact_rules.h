@@ -116,11 +116,11 @@ constexpr double kTangentHelperSwitch = 0.6;
 /// Inside, a query with G(Q) below this is "deep": the centre's candidates may be nearer.
 constexpr double kDeepGauge = 0.5;
 
-/// Inside, a query with G(Q) below this ("deeper") uses the direction cover: its start is
-/// compared with the radial one and the nearer goes first, and its certificate is tried where
-/// the Hessian ball's fails. Above it, near the surface, the cover is not used: the radial
-/// start goes first, and the Hessian ball certifies about as often as the cover would, at a
-/// fraction of its cost.
+/// Inside, a query with G(Q) below this ("deeper") takes the direction cover's start: it is
+/// compared with the radial one and the nearer goes first. Above it, near the surface, the
+/// radial start goes first and the cover's is not tried (the axis projections find the other
+/// basins as often). The cover's certificate is tried at every depth where the Hessian ball's
+/// fails.
 constexpr double kCoverGauge = 0.9;
 
 /// The direction cover's certificate gives up on a cap wider than this chord (about 44°): the

@@ -32,8 +32,8 @@
 // answer wins; deep inside an elongated shape, also from the diagonals of the cross-sections.
 // Below G = 0.9 the direction cover's guess (shape/direction_cover.h) competes with the radial
 // start for first place. The search stops at the first answer a certificate proves global
-// (rolling ball, Hessian ball, direction cover: searchInside). Each start has its own share of
-// one iteration budget.
+// (rolling ball, Hessian ball, direction cover at any depth: searchInside). Each start has its own
+// share of one iteration budget.
 //
 // Convergence is judged by the paper's error (Eq. 7) so all methods share one yardstick.
 
@@ -154,7 +154,7 @@ class ExactSolver {
       checked = best->point;
       return hessianBallCertified(primal_, y_, best->point, best->gradient, distance,
                                   best->error) ||
-             (g_y < S(rules::kCoverGauge) && coverCertified(*best, distance));
+             coverCertified(*best, distance);
     };
     if (certified()) return;
     // Deeper inside, the second start is the one solve() did not take (the radial projection

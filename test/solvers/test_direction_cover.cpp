@@ -119,8 +119,8 @@ TEST(DirectionCover, CapHoldsEveryLowDirection) {
   EXPECT_GT(low_directions, 1000) << "the sample should hold directions inside the caps";
 }
 
-// The claim of capWithin: where it says a target radius holds (a half and a quarter of
-// capRadius's, the solver's two tries), every first-octant direction n where F(n) < need lies
+// The claim of capWithin: where it says a target radius holds (a half, a quarter and an eighth
+// of capRadius's, the certificate's tries), every first-octant direction n where F(n) < need lies
 // within the target of n_star. Checked as capRadius's claim above, with h in long double over
 // 8,000 lattice directions; and where the lattice itself holds a low direction beyond the
 // target, capWithin must have said no.
@@ -146,7 +146,8 @@ TEST(DirectionCover, RefinedCapHoldsEveryLowDirection) {
       const Vector3<double> n_star = r.normal.cwiseAbs();
       for (double extra : {0.0, 1e-3, 0.03}) {
         const double need = -r.distance + extra * shape.size();
-        const double theta = cover.capRadius(y, n_star, need, 2.0);
+        const detail::DirectionCover<double>::Cap cap = cover.cap(y, n_star, need, 2.0);
+        const double theta = cap.radius;
         if (!std::isfinite(theta)) continue;
         // The farthest low direction of the lattice.
         double farthest = 0;
@@ -155,9 +156,9 @@ TEST(DirectionCover, RefinedCapHoldsEveryLowDirection) {
           if (h_of[i] - n.dot(y.cast<long double>()) >= need) continue;
           farthest = std::max(farthest, double((n - n_star.cast<long double>()).norm()));
         }
-        for (double fraction : {0.5, 0.25}) {
+        for (double fraction : {0.5, 0.25, 0.125}) {
           const double target = fraction * theta;
-          const bool within = cover.capWithin(y, n_star, need, target);
+          const bool within = cover.capWithin(cap, y, n_star, need, target);
           ++tries;
           if (within) {
             ++held;
