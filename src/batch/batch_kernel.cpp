@@ -655,12 +655,12 @@ void SolveOutsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
 /// ball_certificate.h's certificates on the lanes of `lanes`, one lane at a time through the
 /// scalar solver's own functions (ExactSolver::searchInside): the Hessian ball, and where it
 /// fails the direction cover's, on at most exact_rules::kCoverAttempts answers per lane
-/// (`cover_attempts`, per lane); converged inside candidates `c` at `distance` from the
-/// queries `y`.
+/// (`cover_attempts`, per lane, as the split cells' support points, `split_budgets`); converged
+/// inside candidates `c` at `distance` from the queries `y`.
 template <class D>
 hn::Mask<D> CertifiedLanes(D d, const LaneProblem<hn::TFromD<D>>& problem, const Vec3<D>& y,
                            const Candidate<D>& c, hn::Vec<D> distance, hn::Mask<D> lanes,
-                           int* cover_attempts) {
+                           int* cover_attempts, int* split_budgets) {
   using T = hn::TFromD<D>;
   // After dual iterations a candidate's gradient is its start's: ∇G at the point is n/(n·N)
   // (the gauge's gradient at the boundary point of normal n; ExactSolver::newtonDual).
@@ -683,7 +683,7 @@ hn::Mask<D> CertifiedLanes(D d, const LaneProblem<hn::TFromD<D>>& problem, const
       ++cover_attempts[k];
       holds = directionCoverCertified(problem.shape->directionCover(), problem.primal, vector(0),
                                       vector(3), vector(12), vector(6), lane[9][k],
-                                      T(rules::kCoverCapLimit));
+                                      T(rules::kCoverCapLimit), &split_budgets[k]);
     }
     lane[11][k] = holds ? T(1) : T(0);
   }
@@ -723,6 +723,8 @@ void SolveInsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
   // solver's own functions. `fresh`: the lanes whose candidate is new since the last check (the
   // balls are tested once per candidate, as in ExactSolver::searchInside).
   int cover_attempts[kMaxLanes] = {};
+  int split_budgets[kMaxLanes];
+  std::fill(split_budgets, split_budgets + kMaxLanes, DirectionCover<T>::kSplitSupportPoints);
   const auto certified = [&](const Candidate<D>& c, M converged, M fresh) {
     const Vec3<D> to_c = Minus(y, c.point);
     const V distance = hn::Sqrt(Dot(to_c, to_c));
@@ -730,8 +732,8 @@ void SolveInsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
     const M rolling = hn::And(converged, hn::Le(reach, hn::Set(d, problem.rolling_radius)));
     const M open = hn::And(fresh, hn::AndNot(rolling, converged));
     if (hn::AllFalse(d, open)) return rolling;
-    return hn::Or(rolling,
-                  hn::And(open, CertifiedLanes(d, problem, y, c, distance, open, cover_attempts)));
+    return hn::Or(rolling, hn::And(open, CertifiedLanes(d, problem, y, c, distance, open,
+                                                        cover_attempts, split_budgets)));
   };
   M done = certified(best, all_converged, work);
   M more = hn::AndNot(done, work);

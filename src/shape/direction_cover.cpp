@@ -242,13 +242,18 @@ S DirectionCover<S>::capRadius(const Vector3<S>& y, const Vector3<S>& n_star, S 
 
 template <typename S>
 bool DirectionCover<S>::capWithin(const Cap& cap, const Vector3<S>& y, const Vector3<S>& n_star,
-                                  S need, S target) const {
+                                  S need, S target, int* budget) const {
   if (!(std::isfinite(cap.radius) && target >= S(0))) return false;
   const S yy = y.squaredNorm();
   // Whether the bound with the point s of the shape reaches `need` over cell c.
   auto passes = [&](const Cell<S>& c, const Vector3<S>& s) {
     return boundReaches(c.a.dot(s) - c.a.dot(y), s.dot(y), s.squaredNorm(), yy, c.cos_t, c.sin2_t,
                         need);
+  };
+  // A direction a beyond `target` whose own F, with s its support point (a few ulps inside),
+  // is below `need`: the claim is false, and no split can make it true.
+  auto refutes = [&](const Vector3<S>& a, const Vector3<S>& s) {
+    return a.dot(s) - a.dot(y) < need && (a - n_star).norm() > target;
   };
   // A failing cell (face, i, j) of a k × k grid that reaches beyond `target`, with its support
   // point s: split into its four children of the 2k × 2k grid, `levels` more times at most.
@@ -267,8 +272,11 @@ bool DirectionCover<S>::capWithin(const Cap& cap, const Vector3<S>& y, const Vec
         const Cell<S> c = r < kTabled ? onFace(grids[r][std::size_t(ci) * (2 * k) + cj], face)
                                       : cellGeometry<S>(face, ci, cj, 2 * k);
         if ((c.a - n_star).norm() + c.chord <= target || passes(c, s)) continue;
+        if (*budget <= 0) return false;
+        --*budget;
         const Vector3<S> own = supportInside(support_, c.a, face);
         if (passes(c, own)) continue;
+        if (refutes(c.a, own)) return false;
         if (!self(self, face, ci, cj, 2 * k, levels - 1, own)) return false;
       }
     }
@@ -292,6 +300,9 @@ bool DirectionCover<S>::capWithin(const Cap& cap, const Vector3<S>& y, const Vec
             [](const Beyond& l, const Beyond& r) { return l.reach < r.reach; });
   for (std::size_t k = 0; k < beyond_count; ++k) {
     const std::size_t p = beyond[k].cell;
+    const Vector3<S> a(finest.ax[p], finest.ay[p], finest.az[p]);
+    const Vector3<S> s(finest.sx[p], finest.sy[p], finest.sz[p]);
+    if (refutes(a, s)) return false;
     // Its (face, i, j): the coarse cell (face·kCoarse + i)·kCoarse + j, then per level the child
     // 2·di + dj, from the coarsest level's digits down.
     std::size_t rest = p;
@@ -305,7 +316,6 @@ bool DirectionCover<S>::capWithin(const Cap& cap, const Vector3<S>& y, const Vec
     const int face = int(rest / (kCoarse * kCoarse));
     i += int(rest / kCoarse % kCoarse) << (kLevels - 1);
     j += int(rest % kCoarse) << (kLevels - 1);
-    const Vector3<S> s(finest.sx[p], finest.sy[p], finest.sz[p]);
     if (!within(within, face, i, j, kFinest, kRefineLevels, s)) return false;
   }
   return true;

@@ -68,10 +68,18 @@ class DirectionCover {
   /// Whether the same claim holds with the radius `target`, smaller than the cap's: the finest
   /// failing cells that reach beyond `target` from n_star are split further, up to
   /// kRefineLevels levels below the stored ones, their support points evaluated on the spot
-  /// (none are kept). False as soon as a cell of the last level still fails beyond `target`.
-  bool capWithin(const Cap& cap, const Vector3<S>& y, const Vector3<S>& n_star, S need,
-                 S target) const;
+  /// (none are kept). False as soon as a cell of the last level still fails beyond `target`,
+  /// a split cell's own centre is a direction beyond `target` where F < need, or `budget`
+  /// (the support points it may still evaluate, decremented) runs out.
+  bool capWithin(const Cap& cap, const Vector3<S>& y, const Vector3<S>& n_star, S need, S target,
+                 int* budget) const;
   static constexpr int kRefineLevels = 3;
+  /// The support points one query may spend on capWithin, over all its answers: a check that
+  /// holds takes a median of 5–8 of them (docs/math.md → "Splitting cells on the spot"); one
+  /// that needs many more is mostly one that fails late, where F stays within a hair of `need`
+  /// over a wide set of directions (beside a flat face's sharp rim), and the query's next
+  /// answer usually lies there too.
+  static constexpr int kSplitSupportPoints = 64;
 
  private:
   /// One level's cells, field by field (the loops over them vectorise). Cell p of a level has

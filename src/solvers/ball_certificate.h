@@ -227,12 +227,14 @@ bool hessianCapCertified(const NestedNorm<S>& gauge, const Vector3<S>& nearest,
 /// `cap_limit`, or a fraction of it by DirectionCover::capWithin where the stored cap's slab
 /// fails) and the Hessian bound holds over the slab of r = 2·d·θ at N
 /// (hessianCapCertified; 2.01 covers the chord's rounding). Needs Q' in the first octant (the
-/// mirror argument); a rounding outside it is not certified.
+/// mirror argument); a rounding outside it is not certified. `split_budget`: the support points
+/// the query may still spend on split cells (DirectionCover::kSplitSupportPoints per query),
+/// decremented.
 template <typename S>
 bool directionCoverCertified(const DirectionCover<S>& cover, const NestedNorm<S>& gauge,
                              const Vector3<S>& y, const Vector3<S>& nearest,
                              const Vector3<S>& normal, const Vector3<S>& gradient_at_n, S distance,
-                             S cap_limit) {
+                             S cap_limit, int* split_budget) {
   const Vector3<S> centre = nearest - distance * normal;
   if (!(centre.minCoeff() >= S(0))) return false;
   const S need = distance + (centre - y).norm();
@@ -245,11 +247,15 @@ bool directionCoverCertified(const DirectionCover<S>& cover, const NestedNorm<S>
   };
   if (slab(theta)) return true;
   // The stored cells' cap is too wide for the slab: a half, a quarter or an eighth of it may do,
-  // if the cells that reach beyond it pass once split further (DirectionCover::capWithin).
-  for (const S target : {S(0.5) * theta, S(0.25) * theta, S(0.125) * theta}) {
-    if (slab(target)) return cover.capWithin(cap, y, normal, need, target);
+  // if the cells that reach beyond it pass once split further (DirectionCover::capWithin). The
+  // slab of the eighth first: the slabs are nested, so where it fails none of them holds (an
+  // answer beside a crease or a sharp rim), and the check ends after two bounds, not four.
+  const S smallest = S(0.125) * theta;
+  if (!slab(smallest)) return false;
+  for (const S target : {S(0.5) * theta, S(0.25) * theta}) {
+    if (slab(target)) return cover.capWithin(cap, y, normal, need, target, split_budget);
   }
-  return false;
+  return cover.capWithin(cap, y, normal, need, smallest, split_budget);
 }
 
 }  // namespace detail

@@ -215,7 +215,8 @@ class ExactSolver {
     if (cover_attempts_ == rules::kCoverAttempts) return false;
     ++cover_attempts_;
     return directionCoverCertified(q_.shape.directionCover(), primal_, y_, c.point, c.normal,
-                                   c.gradient, distance, S(rules::kCoverCapLimit));
+                                   c.gradient, distance, S(rules::kCoverCapLimit),
+                                   &split_budget_);
   }
 
   /// Near the axis of a (nearly) round cross-section the nearest points form a (nearly)
@@ -659,6 +660,7 @@ class ExactSolver {
   NestedNorm<S> primal_, dual_;
   bool primal_first_;       // which formulation refine() tries first
   int cover_attempts_ = 0;  // coverCertified's, at most exact_rules::kCoverAttempts
+  int split_budget_ = DirectionCover<S>::kSplitSupportPoints;  // coverCertified's, decremented
   Vector3<S> second_start_ = Vector3<S>::Zero();  // deeper inside: the start solve() did not take
   bool inside_ = false;
   S sign_ = S(1);

@@ -37,12 +37,15 @@ std::vector<test::V3> firstOctantDirections(int n) {
   return out;
 }
 
-/// The solver's direction-cover certificate, with its cap limit.
+/// The solver's direction-cover certificate, with its cap limit and a query's budget of split
+/// cells' support points.
 bool certifies(const Superellipsoid<double>& shape, const detail::NestedNorm<double>& gauge,
                const Vector3<double>& y, const Vector3<double>& n_point,
                const Vector3<double>& normal, const Vector3<double>& gradient, double d) {
+  int split_budget = detail::DirectionCover<double>::kSplitSupportPoints;
   return detail::directionCoverCertified(shape.directionCover(), gauge, y, n_point, normal,
-                                         gradient, d, detail::exact_rules::kCoverCapLimit);
+                                         gradient, d, detail::exact_rules::kCoverCapLimit,
+                                         &split_budget);
 }
 
 /// A stationary point Q = N − d·n (N on the surface, n its normal) judged twice: whether N is
@@ -158,7 +161,8 @@ TEST(DirectionCover, RefinedCapHoldsEveryLowDirection) {
         }
         for (double fraction : {0.5, 0.25, 0.125}) {
           const double target = fraction * theta;
-          const bool within = cover.capWithin(cap, y, n_star, need, target);
+          int budget = 1 << 20;  // no budget: the claim itself
+          const bool within = cover.capWithin(cap, y, n_star, need, target, &budget);
           ++tries;
           if (within) {
             ++held;

@@ -129,8 +129,9 @@ bool localBallCertified(const Superellipsoid<S>& shape, const fcl::Transform3<S>
   const S error = (y - (nearest - f * normal)).norm();
   if (!(error <= slack)) return false;
   if (hessianBallCertified(gauge, y, nearest, gradient, f, error)) return true;
+  int split_budget = DirectionCover<S>::kSplitSupportPoints;
   return directionCoverCertified(shape.directionCover(), gauge, y, nearest, normal, gradient, f,
-                                 S(exact_rules::kCoverCapLimit));
+                                 S(exact_rules::kCoverCapLimit), &split_budget);
 }
 
 /// The other shape's share of a candidate's ball (above): the largest ρ in [0, most] found for
