@@ -215,8 +215,7 @@ class ExactSolver {
     if (cover_attempts_ == rules::kCoverAttempts) return false;
     ++cover_attempts_;
     return directionCoverCertified(q_.shape.directionCover(), primal_, y_, c.point, c.normal,
-                                   c.gradient, distance, S(rules::kCoverCapLimit),
-                                   &split_budget_);
+                                   c.gradient, distance, S(rules::kCoverCapLimit), &split_budget_);
   }
 
   /// Near the axis of a (nearly) round cross-section the nearest points form a (nearly)
