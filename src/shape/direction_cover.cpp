@@ -235,12 +235,6 @@ typename DirectionCover<S>::Cap DirectionCover<S>::cap(const Vector3<S>& y,
 }
 
 template <typename S>
-S DirectionCover<S>::capRadius(const Vector3<S>& y, const Vector3<S>& n_star, S need,
-                               S limit) const {
-  return cap(y, n_star, need, limit).radius;
-}
-
-template <typename S>
 bool DirectionCover<S>::capWithin(const Cap& cap, const Vector3<S>& y, const Vector3<S>& n_star,
                                   S need, S target, int* budget) const {
   if (!(std::isfinite(cap.radius) && target >= S(0))) return false;

@@ -12,7 +12,7 @@
 //  - half of a certificate that a converged answer is the global one: every point s of the
 //    shape gives h(n) ≥ n·s, so over a cell of half-angle θ around a, with w = s(a) − Q at the
 //    angle φ from a, F(n) ≥ ‖w‖·cos(φ + θ). The cells where that bound stays below the
-//    answer's distance (refined three levels deep) lie within `capRadius` of its normal; the
+//    answer's distance (refined three levels deep) lie within `cap`'s radius of its normal; the
 //    other half, ball_certificate.h's Hessian bound over the surface near the answer, covers
 //    them. Where that cap is too wide for the Hessian bound, `capWithin` splits the cells
 //    beyond a smaller radius further, with support points evaluated per query.
@@ -52,14 +52,12 @@ class DirectionCover {
 
   /// For y in the first octant, a unit n_star in it and a length `need`: a chord radius θ such
   /// that every first-octant unit direction n with F(n) = h(n) − n·y < need satisfies
-  /// ‖n − n_star‖ ≤ θ. Cells whose lower bound of F reaches `need` are skipped, the others
-  /// refined down to the finest level and counted whole. +∞ as soon as θ exceeds `limit`, and
-  /// where y or need is not finite.
-  S capRadius(const Vector3<S>& y, const Vector3<S>& n_star, S need, S limit) const;
-
-  /// capRadius's finest failing cells and radius, for capWithin to go on from.
+  /// ‖n − n_star‖ ≤ θ, with the finest level's failing cells behind it (for capWithin). Cells
+  /// whose lower bound of F reaches `need` are skipped, the others refined down to the finest
+  /// level and counted whole. θ is +∞ as soon as it exceeds `limit`, and where y or need is not
+  /// finite.
   struct Cap {
-    S radius;           // as capRadius; +∞ beyond its limit
+    S radius;           // θ; +∞ beyond the limit
     std::size_t count;  // the finest level's failing cells, in `failing`
     std::array<std::uint16_t, kFinestCells> failing;
   };

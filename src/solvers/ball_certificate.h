@@ -203,7 +203,7 @@ bool hessianBallCertified(const NestedNorm<S>& gauge, const Vector3<S>& y,
 /// does not grow (n ≥ 0), so it lies in the slab 0 ≤ a ≤ r²/(2d), ‖b‖ ≤ r of the octant, as
 /// does its segment from N. Over that slab's box the Taylor bound holds when M·d ≤ ‖∇G(N)‖
 /// (for a ≥ ‖P − N‖²/(2d), ½·M·‖P − N‖² ≤ M·d·a ≤ ‖∇G(N)‖·a), so G ≤ 1 on the sphere's points
-/// within r of N; the direction cover's cap (DirectionCover::capRadius) places the rest of
+/// within r of N; the direction cover's cap (DirectionCover::cap) places the rest of
 /// the sphere inside, and G, convex, is at most 1 over the whole ball.
 template <typename S>
 bool hessianCapCertified(const NestedNorm<S>& gauge, const Vector3<S>& nearest,

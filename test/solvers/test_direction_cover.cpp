@@ -37,6 +37,53 @@ std::vector<test::V3> firstOctantDirections(int n) {
   return out;
 }
 
+/// h in long double (test_support's superellipsoidSupport) at each of `directions`, for the
+/// shape of a kShapes row.
+std::vector<long double> supportAt(const std::array<double, 5>& p,
+                                   const std::vector<test::V3>& directions) {
+  const test::V3 radii(p[0], p[1], p[2]);
+  std::vector<long double> out(directions.size());
+  for (std::size_t i = 0; i < directions.size(); ++i) {
+    out[i] = test::superellipsoidSupport(radii, p[3], p[4], directions[i]);
+  }
+  return out;
+}
+
+/// A uniform draw in the shape's box; if inside, its first-octant image y with the solver's
+/// depth and nearest normal (the cap claims hold for any n_star; this one is the solver's).
+struct InsideDraw {
+  bool inside;
+  Vector3<double> y, n_star;
+  double depth;
+};
+InsideDraw drawInside(const Superellipsoid<double>& shape, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  const Vector3<double> x = shape.radii().cwiseProduct(Vector3<double>(u(rng), u(rng), u(rng)));
+  if (!shape.contains(x)) return {false, {}, {}, 0};
+  const Vector3<double> y = x.cwiseAbs();
+  const PointDistanceResult<double> r = pointDistance(shape, y);
+  return {true, y, r.normal.cwiseAbs(), -r.distance};
+}
+
+/// The largest chord ‖n − n_star‖ over the lattice directions with F(n) = h(n) − n·y < need
+/// (0 if none), and how many there are.
+struct LowDirections {
+  double farthest = 0;
+  int count = 0;
+};
+LowDirections lowDirections(const std::vector<test::V3>& directions,
+                            const std::vector<long double>& h_of, const Vector3<double>& y,
+                            const Vector3<double>& n_star, double need) {
+  LowDirections out;
+  for (std::size_t i = 0; i < directions.size(); ++i) {
+    const test::V3& n = directions[i];
+    if (h_of[i] - n.dot(y.cast<long double>()) >= need) continue;
+    ++out.count;
+    out.farthest = std::max(out.farthest, double((n - n_star.cast<long double>()).norm()));
+  }
+  return out;
+}
+
 /// The solver's direction-cover certificate, with its cap limit and a query's budget of split
 /// cells' support points.
 bool certifies(const Superellipsoid<double>& shape, const detail::NestedNorm<double>& gauge,
@@ -63,24 +110,19 @@ Verdict judge(const Superellipsoid<double>& shape, const test::ReferenceDistance
           certifies(shape, gauge, y, n_point, normal, gradient, d), double(-truth.distance)};
 }
 
-// The claim of capRadius: every first-octant direction n where F(n) = h(n) − n·y is below
-// `need` lies within the returned chord of n_star. Checked with h evaluated directly in long
-// double (test_support's superellipsoidSupport, itself checked against surface points here)
-// over 8,000 lattice directions, for points at every depth, n_star the solver's nearest normal
-// (the claim holds for any) and `need` from the depth itself up to 0.3 × size beyond it (wider
-// caps).
+// The claim of cap: every first-octant direction n where F(n) = h(n) − n·y is below `need` lies
+// within the returned chord of n_star. Checked with h evaluated directly in long double
+// (test_support's superellipsoidSupport, itself checked against surface points here) over 8,000
+// lattice directions, for points at every depth, n_star the solver's nearest normal (the claim
+// holds for any) and `need` from the depth itself up to 0.3 × size beyond it (wider caps).
 TEST(DirectionCover, CapHoldsEveryLowDirection) {
   std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-1, 1);
   const std::vector<test::V3> directions = firstOctantDirections(64000);
   int queries = 0, low_directions = 0, finite_caps = 0;
   for (const auto& p : kShapes) {
     const Superellipsoid<double> shape{p[0], p[1], p[2], p[3], p[4]};
     SCOPED_TRACE(test::describe(shape));
-    const test::V3 radii(p[0], p[1], p[2]);
-    const auto h = [&](const test::V3& n) {
-      return test::superellipsoidSupport(radii, p[3], p[4], n);
-    };
+    const std::vector<long double> h_of = supportAt(p, directions);
     // The test's own support function: at least n·x for surface points, equal at the support
     // point of n.
     test::AngleSampler angles(3);
@@ -88,33 +130,22 @@ TEST(DirectionCover, CapHoldsEveryLowDirection) {
       const auto [eta, omega] = angles();
       const Vector3<double> x = shape.surfacePoint(eta, omega);
       const test::V3 n = shape.normal(x).cast<long double>();
-      ASSERT_NEAR(double(h(n)), double(n.dot(x.cast<long double>())), 1e-12 * shape.size());
+      ASSERT_NEAR(double(test::superellipsoidSupport({p[0], p[1], p[2]}, p[3], p[4], n)),
+                  double(n.dot(x.cast<long double>())), 1e-12 * shape.size());
     }
-    std::vector<long double> h_of(directions.size());
-    for (std::size_t i = 0; i < directions.size(); ++i) h_of[i] = h(directions[i]);
     const detail::DirectionCover<double>& cover = shape.directionCover();
     for (int k = 0; k < 12; ++k) {
-      const Vector3<double> x = shape.radii().cwiseProduct(Vector3<double>(u(rng), u(rng), u(rng)));
-      if (!shape.contains(x)) continue;
-      const Vector3<double> y = x.cwiseAbs();
-      const PointDistanceResult<double> r = pointDistance(shape, y);
-      const Vector3<double> n_star = r.normal.cwiseAbs();
+      const InsideDraw draw = drawInside(shape, rng);
+      if (!draw.inside) continue;
       for (double extra : {0.0, 1e-3, 0.03, 0.3}) {
-        const double need = -r.distance + extra * shape.size();
-        const double theta = cover.capRadius(y, n_star, need, 2.0);
+        const double need = draw.depth + extra * shape.size();
+        const double theta = cover.cap(draw.y, draw.n_star, need, 2.0).radius;
         ++queries;
         if (!std::isfinite(theta)) continue;
         ++finite_caps;
-        for (std::size_t i = 0; i < directions.size(); ++i) {
-          const test::V3& n = directions[i];
-          const long double f = h_of[i] - n.dot(y.cast<long double>());
-          if (f >= need) continue;
-          ++low_directions;
-          const double chord = double((n - n_star.cast<long double>()).norm());
-          ASSERT_LE(chord, theta) << "y = " << y.transpose() << ", need = " << need
-                                  << ": F = " << double(f) << " at n = " << double(n[0]) << ", "
-                                  << double(n[1]) << ", " << double(n[2]);
-        }
+        const LowDirections low = lowDirections(directions, h_of, draw.y, draw.n_star, need);
+        low_directions += low.count;
+        ASSERT_LE(low.farthest, theta) << "y = " << draw.y.transpose() << ", need = " << need;
       }
     }
   }
@@ -123,50 +154,35 @@ TEST(DirectionCover, CapHoldsEveryLowDirection) {
 }
 
 // The claim of capWithin: where it says a target radius holds (a half, a quarter and an eighth
-// of capRadius's, the certificate's tries), every first-octant direction n where F(n) < need lies
-// within the target of n_star. Checked as capRadius's claim above, with h in long double over
-// 8,000 lattice directions; and where the lattice itself holds a low direction beyond the
-// target, capWithin must have said no.
+// of the cap's, the certificate's tries), every first-octant direction n where F(n) < need lies
+// within the target of n_star. Checked as cap's claim above, with h in long double over 8,000
+// lattice directions; and where the lattice itself holds a low direction beyond the target,
+// capWithin must have said no.
 TEST(DirectionCover, RefinedCapHoldsEveryLowDirection) {
   std::mt19937 rng(23);
-  std::uniform_real_distribution<double> u(-1, 1);
   const std::vector<test::V3> directions = firstOctantDirections(64000);
   int tries = 0, held = 0, refused_by_lattice = 0;
   for (const auto& p : kShapes) {
     const Superellipsoid<double> shape{p[0], p[1], p[2], p[3], p[4]};
     SCOPED_TRACE(test::describe(shape));
-    const test::V3 radii(p[0], p[1], p[2]);
-    std::vector<long double> h_of(directions.size());
-    for (std::size_t i = 0; i < directions.size(); ++i) {
-      h_of[i] = test::superellipsoidSupport(radii, p[3], p[4], directions[i]);
-    }
+    const std::vector<long double> h_of = supportAt(p, directions);
     const detail::DirectionCover<double>& cover = shape.directionCover();
     for (int k = 0; k < 16; ++k) {
-      const Vector3<double> x = shape.radii().cwiseProduct(Vector3<double>(u(rng), u(rng), u(rng)));
-      if (!shape.contains(x)) continue;
-      const Vector3<double> y = x.cwiseAbs();
-      const PointDistanceResult<double> r = pointDistance(shape, y);
-      const Vector3<double> n_star = r.normal.cwiseAbs();
+      const InsideDraw draw = drawInside(shape, rng);
+      if (!draw.inside) continue;
       for (double extra : {0.0, 1e-3, 0.03}) {
-        const double need = -r.distance + extra * shape.size();
-        const detail::DirectionCover<double>::Cap cap = cover.cap(y, n_star, need, 2.0);
-        const double theta = cap.radius;
-        if (!std::isfinite(theta)) continue;
-        // The farthest low direction of the lattice.
-        double farthest = 0;
-        for (std::size_t i = 0; i < directions.size(); ++i) {
-          const test::V3& n = directions[i];
-          if (h_of[i] - n.dot(y.cast<long double>()) >= need) continue;
-          farthest = std::max(farthest, double((n - n_star.cast<long double>()).norm()));
-        }
+        const double need = draw.depth + extra * shape.size();
+        const detail::DirectionCover<double>::Cap cap = cover.cap(draw.y, draw.n_star, need, 2.0);
+        if (!std::isfinite(cap.radius)) continue;
+        const double farthest = lowDirections(directions, h_of, draw.y, draw.n_star, need).farthest;
         for (double fraction : {0.5, 0.25, 0.125}) {
-          const double target = fraction * theta;
+          const double target = fraction * cap.radius;
           int budget = 1 << 20;  // no budget: the claim itself
-          const bool within = cover.capWithin(cap, y, n_star, need, target, &budget);
+          const bool within = cover.capWithin(cap, draw.y, draw.n_star, need, target, &budget);
           ++tries;
           if (within) {
             ++held;
-            ASSERT_LE(farthest, target) << "y = " << y.transpose() << ", need = " << need;
+            ASSERT_LE(farthest, target) << "y = " << draw.y.transpose() << ", need = " << need;
           } else if (farthest > target) {
             ++refused_by_lattice;
           }
