@@ -23,6 +23,7 @@
 #include "batch/batch_kernel.h"
 #include "common/coordinate_range.h"
 #include "common/invalid_argument.h"
+#include "common/tasks.h"
 #include "fcl_superellipsoid/point_distance.h"
 #include "solvers/solvers.h"
 
@@ -64,19 +65,17 @@ void forEachChunk(Eigen::Index n, const BatchOptions<S>& options, const Body& bo
     return;
   }
 #if defined(__SANITIZE_THREAD__)
-  // ThreadSanitizer cannot see TBB's synchronisation (Debian's libtbb is not instrumented), so in
-  // the TSan build (scripts/test.sh --tsan) the same chunks run on std::threads, joined visibly:
-  // its reports are then about this library's shared state, not TBB's scheduler.
+  // The TSan build runs the same chunks on TaskGroup's std::threads (common/tasks.h).
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   const int threads = options.threads > 1 ? options.threads : int(cores);
   std::atomic<Eigen::Index> next{0};
-  std::vector<std::thread> pool;
+  detail::TaskGroup pool;
   for (int t = 0; t < threads; ++t) {
-    pool.emplace_back([&] {
+    pool.run([&] {
       for (Eigen::Index c = next++; c < chunks; c = next++) run(c);
     });
   }
-  for (std::thread& t : pool) t.join();
+  pool.wait();
   return;
 #endif
   auto parallel = [&] {

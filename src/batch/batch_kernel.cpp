@@ -816,6 +816,7 @@ template <typename T>
 void GaugeLanes(const NestedNorm<T>& primal, const T* const query[3], T* gauge, std::size_t n) {
   using D = hn::ScalableTag<T>;
   const D d;
+  static_assert(hn::MaxLanes(D()) <= kVectorLanes<T>, "kVectorLanes is too small for this target");
   const NormLanes<D> c(d, primal);
   for (std::size_t i = 0; i < n; i += hn::Lanes(d)) {
     const Vec3<D> y = LoadVec3(d, query, i);

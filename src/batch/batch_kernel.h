@@ -44,6 +44,10 @@ namespace detail {
 /// n rounded up to a multiple of this; the caller fills the padding with copies of a real lane.
 constexpr std::size_t kMaxLanes = 16;
 
+/// The widest vector of T the kernel uses, in lanes (kMaxLanes for float, half that for double).
+template <typename T>
+constexpr std::size_t kVectorLanes = kMaxLanes * sizeof(float) / sizeof(T);
+
 /// What the kernel needs of the shape and the options.
 template <typename S>
 struct LaneProblem {
@@ -96,10 +100,10 @@ void solveLanes(const LaneProblem<float>& problem, const LaneArrays<float>& lane
 void solveLanes(const LaneProblem<double>& problem, const LaneArrays<double>& lanes, std::size_t n,
                 LanePass pass);
 
-/// The gauge G(Q) (the primal nested norm) at n first-octant points query[0..2][i], lane by
-/// lane, into gauge[i], with the kernel's powers (within a few ulps of NestedNorm::value). n
-/// must be a multiple of kMaxLanes. The BVH traversal's collision test (fcl_glue/
-/// vertex_traversal.cpp) classifies a subtree's vertices with it.
+/// The nested norm `primal` at n first-octant points query[0..2][i], lane by lane, into
+/// gauge[i], with the kernel's powers (within a few ulps of NestedNorm::value). n must be a
+/// multiple of kVectorLanes<T>. The BVH traversal (fcl_glue/vertex_traversal.cpp) classifies a
+/// subtree's vertices with the gauge G, and bounds its BVs with the support function h.
 void gaugeLanes(const NestedNorm<float>& primal, const float* const query[3], float* gauge,
                 std::size_t n);
 void gaugeLanes(const NestedNorm<double>& primal, const double* const query[3], double* gauge,

@@ -8,10 +8,14 @@
 #include <fcl/math/bv/kIOS.h>
 
 #include <algorithm>
+#include <array>
 #include <limits>
+#include <memory>
 #include <unordered_set>
 
 #include "batch/batch_kernel.h"
+#include "common/tasks.h"
+#include "fcl_glue/bvh_node.h"
 #include "fcl_superellipsoid/batch_distance.h"
 #include "fcl_superellipsoid/diagnostics.h"
 #include "fcl_superellipsoid/point_distance.h"
@@ -67,6 +71,22 @@ SweptBox<S> sweptBox(const fcl::KDOP<S, N>& bv) {
 
 /// Subtrees with at most this many primitives are descended without bounding their BVs.
 constexpr int kUnboundedPrimitives = 16;
+
+/// The axes along which boundsOf evaluates the support function, per BV.
+constexpr int kBoundAxes = 4;
+static_assert(2 * kBoundAxes <= kMaxLanes, "boundsOf's lanes hold two BVs' axes");
+
+/// boundsOf raises the lanes' support function by this fraction: more than their powers'
+/// difference from exact ones along a unit direction (test_batch_distance.cpp checks 4 ulps).
+template <typename S>
+constexpr S kLaneSupportSlack = 16 * std::numeric_limits<S>::epsilon();
+
+/// A collision query classifies the vertices of this many small subtrees together.
+constexpr std::size_t kPendingSubtrees = 8;
+
+/// A collision query with depths hands the vertices it finds inside to a task in blocks of at
+/// least this many.
+constexpr std::size_t kSolveBlock = 512;
 
 /// A distance query solves its first this many survivors together, then twice as many, ….
 constexpr std::size_t kFirstSolveBatch = 8;
@@ -143,113 +163,160 @@ class VertexTraversal {
   }
 
   /// The penetrating vertices, the deepest max_count first. With depths, every vertex strictly
-  /// inside is found by the traversal and then solved together by the batched queries.
+  /// inside is found by the traversal and solved by the batched queries, in blocks handed to a
+  /// task as the traversal finds them (solveInside).
   std::vector<VertexHit<S>> penetrating(std::size_t max_count, bool with_depth) {
     max_count_ = max_count;
     with_depth_ = with_depth;
-    if (model_.getNumBVs() > 0 && max_count > 0) descendForCollision(0);
+    if (model_.getNumBVs() > 0 && max_count > 0) {
+      descendForCollision(0);
+      testPending();
+    }
     if (!with_depth_) return hits_;
-    std::vector<VertexHit<S>> hits;
-    for (const VertexHit<S>& h : solveAll(inside_)) {
-      if (h.distance < S(0)) hits.push_back(h);
+    solveInside(true);
+    solving_.wait();
+    // The penetrating ones sorted by (depth, vertex) keys; hits are made only for those kept.
+    std::vector<std::pair<S, int>> keys;  // (distance, index in inside_)
+    for (const std::unique_ptr<SolveBlock>& block : blocks_) {
+      const auto& distance = block->answer.distance;
+      for (Eigen::Index k = 0; k < distance.size(); ++k) {
+        if (distance[k] < S(0)) keys.emplace_back(distance[k], int(block->first + std::size_t(k)));
+      }
     }
-    // Sorted by (depth, vertex) keys, then gathered: a hit is several times a key's size.
-    std::vector<std::pair<S, int>> keys(hits.size());
-    for (std::size_t k = 0; k < hits.size(); ++k) keys[k] = {hits[k].distance, int(k)};
-    const std::size_t keep = std::min(max_count_, hits.size());
-    const auto deeper = [&hits](const std::pair<S, int>& a, const std::pair<S, int>& b) {
-      return a.first < b.first ||
-             (a.first == b.first && hits[a.second].vertex < hits[b.second].vertex);
+    const std::size_t keep = std::min(max_count_, keys.size());
+    const auto deeper = [this](const std::pair<S, int>& a, const std::pair<S, int>& b) {
+      return a.first < b.first || (a.first == b.first && inside_[a.second] < inside_[b.second]);
     };
-    if (keep == hits.size()) {
-      std::sort(keys.begin(), keys.end(), deeper);  // partial_sort would heap-sort them all
+    if (keep == keys.size()) {
+      // std::sort took about 40 ns per key here, a noticeable part of a query with many contacts.
+      parallelSort(keys.begin(), keys.end(), deeper);
     } else {
-      std::partial_sort(keys.begin(), keys.begin() + keep, keys.end(), deeper);
+      std::partial_sort(keys.begin(), keys.begin() + std::ptrdiff_t(keep), keys.end(), deeper);
     }
-    std::vector<VertexHit<S>> deepest(keep);
-    for (std::size_t k = 0; k < keep; ++k) deepest[k] = hits[keys[k].second];
+    std::vector<VertexHit<S>> deepest;
+    deepest.reserve(keep);
+    for (std::size_t i = 0; i < keep; ++i) deepest.push_back(insideHit(keys[i].second));
     return deepest;
   }
 
  private:
-  /// Lower bound on the signed distance of any vertex inside bv (comment in the header). It may
-  /// stop as soon as the bound exceeds `cutoff` (the caller prunes the BV then): the shape's
-  /// own axes first, which need no support-function evaluation.
-  S lowerBound(const BV& bv, S cutoff) {
-    ++stats_.bv_tests;
-    const SweptBox<S> box = sweptBox(bv);
-    const Vector3<S> d = centre_M_ - box.centre;
-    auto gap = [&](const Vector3<S>& u, S shape_half_width, S box_half_width) {
-      return std::abs(u.dot(d)) - shape_half_width - box_half_width - box.radius;
-    };
-    auto boxHalfWidth = [&](const Vector3<S>& u) {
-      return (box.axes.transpose() * u).cwiseAbs().dot(box.half_extents);
-    };
-    auto shapeHalfWidth = [&](const Vector3<S>& u) {
-      return support_.value((R_MS_.transpose() * u).cwiseAbs());
-    };
-    S best = -std::numeric_limits<S>::infinity();
-    for (int i = 0; i < 3; ++i) {
-      const Vector3<S> v = R_MS_.col(i);
-      best = std::max(best, gap(v, shape_.radii()[i], boxHalfWidth(v)));
+  /// Lower bounds on the signed distance of any vertex inside the BVs of two nodes (comment in
+  /// the header); −infinity, without a test, for a node with at most kUnboundedPrimitives
+  /// primitives: bounding its few vertices one by one (one gauge evaluation each) costs less
+  /// than bounding its BV. The support function along both BVs' four axes (their box's three
+  /// and the line of the centres) is evaluated on SIMD lanes at once (gaugeLanes with h's
+  /// nested norm), and raised by kLaneSupportSlack, so that it bounds h from above although
+  /// the lanes' powers may differ from exact ones by a few ulps: a bound stays a lower bound.
+  std::array<S, 2> boundsOf(int first, int second) {
+    const int nodes[2] = {first, second};
+    std::array<S, 2> bounds;
+    SweptBox<S> boxes[2];
+    Vector3<S> offsets[2];  // the shape's centre from the box's, in M
+    bool bounded[2];
+    std::size_t lanes = 0;
+    for (int k = 0; k < 2; ++k) {
+      const fcl::BVNode<BV>& n = model_.getBV(nodes[k]);
+      bounded[k] = n.num_primitives > kUnboundedPrimitives;
+      bounds[k] = -std::numeric_limits<S>::infinity();
+      if (!bounded[k]) continue;
+      ++stats_.bv_tests;
+      boxes[k] = sweptBox(n.bv);
+      offsets[k] = centre_M_ - boxes[k].centre;
+      for (int i = 0; i < kBoundAxes; ++i) {
+        const Vector3<S> w = (R_MS_.transpose() * boundAxis(boxes[k], offsets[k], i)).cwiseAbs();
+        for (int c = 0; c < 3; ++c) lane_support_[c][lanes] = w[c];
+        ++lanes;
+      }
     }
-    if (best > cutoff) return best;
-    for (int i = 0; i < 3; ++i) {
-      const Vector3<S> u = box.axes.col(i);
-      best = std::max(best, gap(u, shapeHalfWidth(u), box.half_extents[i]));
-      if (best > cutoff) return best;
+    if (lanes == 0) return bounds;
+    const std::size_t padded = (lanes + kVectorLanes<S> - 1) / kVectorLanes<S> * kVectorLanes<S>;
+    for (std::size_t l = lanes; l < padded; ++l) {  // the padding repeats the first lane
+      for (int c = 0; c < 3; ++c) lane_support_[c][l] = lane_support_[c][0];
     }
+    const S* const query[3] = {lane_support_[0], lane_support_[1], lane_support_[2]};
+    S h[kMaxLanes];
+    gaugeLanes(support_, query, h, padded);
+    std::size_t lane = 0;
+    for (int k = 0; k < 2; ++k) {
+      if (!bounded[k]) continue;
+      const SweptBox<S>& box = boxes[k];
+      const Vector3<S>& d = offsets[k];
+      auto gap = [&](const Vector3<S>& u, S shape_half_width, S box_half_width) {
+        return std::abs(u.dot(d)) - shape_half_width - box_half_width - box.radius;
+      };
+      S best = -std::numeric_limits<S>::infinity();
+      for (int i = 0; i < 3; ++i) {  // the shape's axes: its radii are its half widths
+        const Vector3<S> u = R_MS_.col(i);
+        best = std::max(best, gap(u, shape_.radii()[i], boxHalfWidth(box, u)));
+      }
+      for (int i = 0; i < kBoundAxes; ++i) {
+        const Vector3<S> u = boundAxis(box, d, i);
+        const S shape_half_width = h[lane++] * (S(1) + kLaneSupportSlack<S>);
+        best = std::max(best, gap(u, shape_half_width, boxHalfWidth(box, u)));
+      }
+      bounds[k] = std::max(best, -shape_.radii().minCoeff());  // no point is deeper than that
+    }
+    return bounds;
+  }
+
+  /// The box's three axes, then the unit line of the centres (the box's first axis again if
+  /// the centres coincide): the axes along which a BV is bounded with the support function.
+  static Vector3<S> boundAxis(const SweptBox<S>& box, const Vector3<S>& d, int i) {
+    if (i < 3) return box.axes.col(i);
     const S n = d.norm();
-    if (n > S(0)) {
-      const Vector3<S> u = d / n;
-      best = std::max(best, gap(u, shapeHalfWidth(u), boxHalfWidth(u)));
-    }
-    return best > S(0) ? best : -shape_.radii().minCoeff();
+    return n > S(0) ? Vector3<S>(d / n) : Vector3<S>(box.axes.col(0));
   }
 
-  /// lowerBound of a node's BV; −infinity, without a test, for a node with at most
-  /// kUnboundedPrimitives primitives: bounding its few vertices one by one (one gauge
-  /// evaluation each) costs less than bounding its BVs (support-function evaluations).
-  S boundOf(int node, S cutoff) {
-    const fcl::BVNode<BV>& n = model_.getBV(node);
-    if (n.num_primitives <= kUnboundedPrimitives) return -std::numeric_limits<S>::infinity();
-    return lowerBound(n.bv, cutoff);
+  static S boxHalfWidth(const SweptBox<S>& box, const Vector3<S>& u) {
+    return (box.axes.transpose() * u).cwiseAbs().dot(box.half_extents);
   }
 
-  /// The vertices of the subtree at `root`, breadth first: each level's nodes, and then the
-  /// vertices, are prefetched together. A small subtree's nodes are scattered over a large
-  /// model, and its vertices over the vertex array (a point cloud's are in no spatial order), so
-  /// visiting them one at a time waited on a cache miss for each: that was most of the
-  /// traversal's time on a 1e6-vertex cloud (docs/design.md → "The BVH traversal"). The
-  /// returned buffer is reused by the next call.
-  const std::vector<int>& gatherSubtree(int root) {
-    subtree_.clear();
+  /// Appends the vertices of the subtree at `root` to subtree_, breadth first: each level's
+  /// nodes, and then the vertices, are prefetched together. A small subtree's nodes are
+  /// scattered over a large model, and its vertices over the vertex array (a point cloud's are
+  /// in no spatial order), so visiting them one at a time waited on a cache miss for each: that
+  /// was most of the traversal's time on a 1e6-vertex cloud (docs/design.md → "The BVH
+  /// traversal"). Calling prefetchBelow(root) earlier lets the levels' misses overlap too.
+  void gatherSubtree(int root) {
     level_.assign(1, root);
     while (!level_.empty()) {
       next_level_.clear();
       for (const int node : level_) {
         const fcl::BVNode<BV>& n = model_.getBV(node);
-        if (n.isLeaf()) {
+        if (isLeaf(n)) {
           forEachVertex(n, [this](int v) {
             __builtin_prefetch(&model_.vertices[v]);
             subtree_.push_back(v);
           });
           continue;
         }
-        for (const int child : {n.leftChild(), n.rightChild()}) {
+        for (const int child : {leftChild(n), rightChild(n)}) {
           __builtin_prefetch(&model_.getBV(child));
           next_level_.push_back(child);
         }
       }
       level_.swap(next_level_);
     }
-    return subtree_;
+  }
+
+  /// Prefetches the nodes below root before they are visited. fcl builds a tree depth first and
+  /// gives each node's two children the next free pair of indices, so a subtree of P primitives
+  /// (P leaves, 2P − 1 nodes) keeps the 2P − 2 nodes below its root in the indices that follow
+  /// its first child: all its levels' cache misses then overlap, where the breadth-first walk
+  /// alone waits for them level by level. Only where the memory is fetched depends on that
+  /// layout, never what the walk finds; the range stays inside the model.
+  void prefetchBelow(int root) const {
+    const fcl::BVNode<BV>& n = model_.getBV(root);
+    if (isLeaf(n)) return;
+    const int first = leftChild(n);
+    const int end = std::min(first + 2 * (n.num_primitives - 1), model_.getNumBVs());
+    for (int node = first; node < end; ++node) __builtin_prefetch(&model_.getBV(node));
   }
 
   /// Calls f(vertex index) for the vertices of a leaf's primitive.
   template <typename F>
   void forEachVertex(const fcl::BVNode<BV>& leaf, F&& f) {
-    const int id = leaf.primitiveId();
+    const int id = primitiveId(leaf);
     if (model_.getModelType() == fcl::BVH_MODEL_POINTCLOUD || model_.num_tris == 0) {
       f(id);
       return;
@@ -281,22 +348,68 @@ class VertexTraversal {
     return hitOf(v, r.nearest_point, r.normal, r.distance);
   }
 
-  /// The vertices, solved together by the batched queries (the SIMD kernel for the Exact
-  /// method, threads for many vertices), with the shape's query options, in the shape's frame.
-  std::vector<VertexHit<S>> solveAll(const std::vector<int>& vertices) {
-    stats_.vertices_solved += vertices.size();
-    Matrix3X<S> p_S(3, Eigen::Index(vertices.size()));
-    for (std::size_t k = 0; k < vertices.size(); ++k) p_S.col(k) = inShapeFrame(vertices[k]);
+  /// The vertices in the shape's frame, as the batched queries take them.
+  Matrix3X<S> inShapeFrame(const int* vertices, std::size_t n) const {
+    Matrix3X<S> p_S(3, Eigen::Index(n));
+    for (std::size_t k = 0; k < n; ++k) p_S.col(Eigen::Index(k)) = inShapeFrame(vertices[k]);
+    return p_S;
+  }
+
+  /// Points in the shape's frame, solved together by the batched queries (the SIMD kernel for
+  /// the Exact method, threads for many points), with the shape's query options. It only reads
+  /// the traversal's state, so it may run on a task beside it.
+  BatchDistanceResult<S> solveBatch(const Matrix3X<S>& p_S) const {
     BatchOptions<S> options;
     options.distance = options_;
     BatchDistanceResult<S> r;
     batchDistance(shape_, fcl::Transform3<S>::Identity(), p_S, r, options);
+    return r;
+  }
+
+  /// The vertices, solved together (solveBatch), as hits.
+  std::vector<VertexHit<S>> solveAll(const std::vector<int>& vertices) {
+    stats_.vertices_solved += vertices.size();
+    const BatchDistanceResult<S> r = solveBatch(inShapeFrame(vertices.data(), vertices.size()));
     std::vector<VertexHit<S>> hits;
     hits.reserve(vertices.size());
     for (std::size_t k = 0; k < vertices.size(); ++k) {
-      hits.push_back(hitOf(vertices[k], r.nearest_point.col(k), r.normal.col(k), r.distance[k]));
+      const Eigen::Index i = Eigen::Index(k);
+      hits.push_back(hitOf(vertices[k], r.nearest_point.col(i), r.normal.col(i), r.distance[i]));
     }
     return hits;
+  }
+
+  /// Hands the vertices found inside since the last call (inside_ from solved_inside_ on) to
+  /// the batched queries as one block: once kSolveBlock of them have gathered, on a task, while
+  /// the traversal goes on (it is memory-bound and single-threaded, so the solving, the larger
+  /// part of a collision query, overlaps it); at the end (last), the rest on this thread.
+  void solveInside(bool last) {
+    const std::size_t first = solved_inside_, n = inside_.size() - first;
+    if (n == 0 || (!last && n < kSolveBlock)) return;
+    auto block = std::make_unique<SolveBlock>();
+    block->first = first;
+    block->p_S = inShapeFrame(inside_.data() + first, n);
+    stats_.vertices_solved += n;
+    solved_inside_ = inside_.size();
+    SolveBlock* const b = block.get();
+    blocks_.push_back(std::move(block));
+    const auto solve = [this, b] { b->answer = solveBatch(b->p_S); };
+    if (last) {
+      solve();
+    } else {
+      solving_.run(solve);
+    }
+  }
+
+  /// The hit of inside_[i], from its block's answer.
+  VertexHit<S> insideHit(int i) const {
+    const auto after = std::upper_bound(
+        blocks_.begin(), blocks_.end(), std::size_t(i),
+        [](std::size_t index, const std::unique_ptr<SolveBlock>& b) { return index < b->first; });
+    const SolveBlock& b = **std::prev(after);
+    const Eigen::Index k = Eigen::Index(std::size_t(i) - b.first);
+    return hitOf(inside_[std::size_t(i)], b.answer.nearest_point.col(k), b.answer.normal.col(k),
+                 b.answer.distance[k]);
   }
 
   bool done() const { return stop_at_penetration_ && penetrator_ >= 0; }
@@ -334,17 +447,19 @@ class VertexTraversal {
   void descendForDistance(int node) {
     if (done()) return;
     const fcl::BVNode<BV>& n = model_.getBV(node);
-    if (n.num_primitives <= kUnboundedPrimitives) {  // no BV of it is bounded (boundOf)
-      for (const int v : gatherSubtree(node)) {
+    if (n.num_primitives <= kUnboundedPrimitives) {  // no BV of it is bounded (boundsOf)
+      subtree_.clear();
+      prefetchBelow(node);
+      gatherSubtree(node);
+      for (const int v : subtree_) {
         if (done()) return;
         testForDistance(v);
       }
       return;
     }
-    int first = n.leftChild(), second = n.rightChild();
+    int first = leftChild(n), second = rightChild(n);
     prefetchNodes(first, second);
-    S bound_first = boundOf(first, best_upper_);
-    S bound_second = boundOf(second, best_upper_);
+    auto [bound_first, bound_second] = boundsOf(first, second);
     if (bound_second < bound_first) {
       std::swap(first, second);
       std::swap(bound_first, bound_second);
@@ -392,14 +507,28 @@ class VertexTraversal {
   void descendForCollision(int node) {
     if (full()) return;
     const fcl::BVNode<BV>& n = model_.getBV(node);
-    if (n.num_primitives <= kUnboundedPrimitives) {  // no BV of it is bounded (boundOf)
-      testForCollision(gatherSubtree(node));
+    if (n.num_primitives <= kUnboundedPrimitives) {  // no BV of it is bounded (boundsOf)
+      prefetchBelow(node);
+      pending_.push_back(node);
+      if (pending_.size() == kPendingSubtrees) testPending();
       return;
     }
-    prefetchNodes(n.leftChild(), n.rightChild());
-    for (int child : {n.leftChild(), n.rightChild()}) {
-      if (boundOf(child, S(0)) < S(0)) descendForCollision(child);
-    }
+    const int first = leftChild(n), second = rightChild(n);
+    prefetchNodes(first, second);
+    const std::array<S, 2> bounds = boundsOf(first, second);
+    if (bounds[0] < S(0)) descendForCollision(first);
+    if (bounds[1] < S(0)) descendForCollision(second);
+  }
+
+  /// The pending subtrees' vertices, gathered and then classified together (testForCollision):
+  /// each subtree's nodes were prefetched when it was found, so gathering one overlaps the
+  /// misses of the next, and the gauge runs on full vectors of lanes.
+  void testPending() {
+    subtree_.clear();
+    for (const int root : pending_) gatherSubtree(root);
+    pending_.clear();
+    testForCollision(subtree_);
+    if (with_depth_) solveInside(false);
   }
 
   /// Prefetches two nodes whole (a node with its BV spans several cache lines), so that their
@@ -424,7 +553,9 @@ class VertexTraversal {
   VertexTraversalStats& stats_;
   std::unordered_set<int> seen_;                   // triangle meshes: vertices already tested
   std::vector<int> subtree_, level_, next_level_;  // gatherSubtree's buffers
+  std::vector<int> pending_;                       // subtrees found, not yet classified
   std::vector<S> lane_query_[3], lane_gauge_;      // testForCollision's lanes
+  S lane_support_[3][kMaxLanes];                   // boundsOf's lanes
   // Distance: the least upper bound so far, the vertices that may still beat it, and with
   // stop_at_penetration the first vertex found inside.
   struct Candidate {
@@ -441,6 +572,16 @@ class VertexTraversal {
   bool with_depth_ = true;
   std::vector<int> inside_;
   std::vector<VertexHit<S>> hits_;
+  // With depths: inside_ in blocks, solved on tasks (solveInside). solving_ is declared last, so
+  // that it waits for its tasks before the blocks they write are destroyed.
+  struct SolveBlock {
+    std::size_t first = 0;  // its first vertex's index in inside_
+    Matrix3X<S> p_S;
+    BatchDistanceResult<S> answer;
+  };
+  std::size_t solved_inside_ = 0;
+  std::vector<std::unique_ptr<SolveBlock>> blocks_;
+  TaskGroup solving_;
 };
 
 }  // namespace

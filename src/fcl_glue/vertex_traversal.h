@@ -10,18 +10,19 @@
 // kIOS and OBBRSS as their OBB, a k-DOP as its axis-aligned slabs (a superset). Along any
 // unit axis u the box covers u·c ± (Σ eᵢ|u·Rᵢ| + r) and the superellipsoid covers u·c_S ± h(u),
 // h its support function (closed form, docs/math.md); the gap between the two intervals is a
-// lower bound on the distance from any vertex in the BV to the shape. The bound is the
-// largest gap over the box's 3 axes, the shape's 3 axes and the line of the centres (the shape's
-// axes first: they need no support function, and a test stops once the BV is pruned). A BV the
-// shape may overlap is bounded by −(smallest radius): no point is deeper than that. Subtrees of
-// a few primitives are not bounded at all: testing their vertices costs less.
+// lower bound on the signed distance from any vertex in the BV to the shape (a negative gap
+// bounds its depth). The bound is the largest gap over the box's 3 axes, the shape's 3 axes
+// and the line of the centres, and at least −(smallest radius): no point is deeper than that.
+// The two children of a node are bounded together, h along their 8 axes on SIMD lanes. Subtrees
+// of a few primitives are not bounded at all: testing their vertices costs less.
 //
 // Solving. The traversal only bounds vertices (one gauge evaluation each, docs/math.md →
 // "Culling a BVH's vertices"; on SIMD lanes for collision, docs/design.md → "The BVH
-// traversal"); the vertices that survive are then solved together by the
-// batched queries (batch_distance.h: the SIMD kernel and threads), with the shape's query
-// options. Distance keeps the least upper bound seen and the vertices whose lower bound does not
-// exceed it; collision keeps every vertex strictly inside.
+// traversal"); the vertices that survive are then solved together by the batched queries
+// (batch_distance.h: the SIMD kernel and threads), with the shape's query options. Distance
+// keeps the least upper bound seen and the vertices whose lower bound does not exceed it;
+// collision keeps every vertex strictly inside, and with depths hands them to the batched
+// queries in blocks on a task while the traversal goes on.
 
 #include <fcl/geometry/bvh/BVH_model.h>
 

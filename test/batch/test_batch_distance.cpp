@@ -10,6 +10,7 @@
 #include "batch/simd_targets_for_test.h"
 #include "fcl_superellipsoid/batch_distance.h"
 #include "fcl_superellipsoid/point_distance.h"
+#include "pair_construction.h"
 #include "reference_distance.h"
 #include "test_helpers.h"
 
@@ -281,17 +282,20 @@ TYPED_TEST(BatchDistanceTest, EveryInstructionSetGivesTheSameAnswers) {
   detail::restrictSimdTargets(0);
 }
 
-// The BVH traversal classifies vertices by the gauge on SIMD lanes (vertex_traversal.cpp): the
-// lanes' G against the long-double reference gauge (test_support/reference_distance.h), on
-// every instruction set, for random shapes and points from the centre to far outside, with
-// coordinates from 0 to tiny fractions of a radius (the powers of tiny ratios).
-TYPED_TEST(BatchDistanceTest, GaugeLanesMatchTheReferenceGauge) {
+// The BVH traversal classifies vertices by the gauge on SIMD lanes and bounds its BVs by the
+// support function on them (vertex_traversal.cpp): the lanes' G against the long-double
+// reference gauge (test_support/reference_distance.h), and their h against the long-double
+// support function (test_support/pair_construction.h) along the points' unit directions, as the
+// traversal takes it, on every instruction set, for random shapes and points from the centre to
+// far outside, with coordinates from 0 to tiny fractions of a radius (the powers of tiny ratios).
+TYPED_TEST(BatchDistanceTest, NormLanesMatchTheReferenceGaugeAndSupport) {
   using S = TypeParam;
   std::mt19937 rng(41);
   std::uniform_real_distribution<double> eps(0.1, 1.9), radius(0.2, 5), unit(0, 1);
   const std::size_t n = 16 * detail::kMaxLanes;
-  std::vector<S> coordinates[3], gauge(n);
+  std::vector<S> coordinates[3], directions[3], gauge(n), support(n);
   for (std::vector<S>& c : coordinates) c.resize(n);
+  for (std::vector<S>& c : directions) c.resize(n);
   const auto targets = detail::simdTargetsOfThisCpu();
   for (int trial = 0; trial < 40; ++trial) {
     const Superellipsoid<S> shape(S(radius(rng)), S(radius(rng)), S(radius(rng)), S(eps(rng)),
@@ -299,6 +303,7 @@ TYPED_TEST(BatchDistanceTest, GaugeLanesMatchTheReferenceGauge) {
     SCOPED_TRACE(test::describe(shape));
     const test::ReferenceDistance reference({shape.radii()[0], shape.radii()[1], shape.radii()[2]},
                                             shape.eps1(), shape.eps2());
+    const test::V3 radii(shape.radii()[0], shape.radii()[1], shape.radii()[2]);
     for (std::size_t i = 0; i < n; ++i) {
       const S scale = S(3 * unit(rng));
       for (int k = 0; k < 3; ++k) {
@@ -309,19 +314,33 @@ TYPED_TEST(BatchDistanceTest, GaugeLanesMatchTheReferenceGauge) {
                                        : unit(rng);
         coordinates[k][i] = S(f) * scale * shape.radii()[k];
       }
+      // The point's direction, as the traversal takes h: a unit vector (its first axis for 0).
+      const Vector3<S> p(coordinates[0][i], coordinates[1][i], coordinates[2][i]);
+      const Vector3<S> u = p.norm() > S(0) ? Vector3<S>(p.normalized()) : Vector3<S>::UnitX();
+      for (int k = 0; k < 3; ++k) directions[k][i] = u[k];
     }
     const S* const query[3] = {coordinates[0].data(), coordinates[1].data(), coordinates[2].data()};
+    const S* const unit_directions[3] = {directions[0].data(), directions[1].data(),
+                                         directions[2].data()};
     for (const auto& [bits, name] : targets) {
       SCOPED_TRACE(name);
       detail::restrictSimdTargets(bits);
       std::fill(gauge.begin(), gauge.end(), S(-1));
       detail::gaugeLanes(detail::NestedNorm<S>::gauge(shape), query, gauge.data(), n);
+      std::fill(support.begin(), support.end(), S(-1));
+      detail::gaugeLanes(detail::NestedNorm<S>::support(shape), unit_directions, support.data(), n);
       for (std::size_t i = 0; i < n; ++i) {
         const long double truth =
             reference.gauge({coordinates[0][i], coordinates[1][i], coordinates[2][i]});
         ASSERT_NEAR(gauge[i], truth, 6 * std::numeric_limits<S>::epsilon() * truth)
             << "point " << i << " (" << coordinates[0][i] << ", " << coordinates[1][i] << ", "
             << coordinates[2][i] << ")";
+        const long double h = test::superellipsoidSupport(
+            radii, shape.eps1(), shape.eps2(),
+            test::V3(directions[0][i], directions[1][i], directions[2][i]));
+        ASSERT_NEAR(support[i], h, 4 * std::numeric_limits<S>::epsilon() * h)
+            << "direction " << i << " (" << directions[0][i] << ", " << directions[1][i] << ", "
+            << directions[2][i] << ")";
       }
     }
   }

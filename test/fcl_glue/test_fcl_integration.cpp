@@ -8,6 +8,7 @@
 
 #include <random>
 
+#include "fcl_glue/bvh_node.h"
 #include "fcl_superellipsoid/diagnostics.h"
 #include "fcl_superellipsoid/fcl_integration.h"
 #include "fcl_superellipsoid/point_distance.h"
@@ -370,6 +371,35 @@ TYPED_TEST(FclIntegrationTest, BroadphaseWithTheCallbacks) {
 }
 
 // Culling: a large cloud far from most of the shape is answered from a small part of it.
+/// Checks the inline node accessors (fcl_glue/bvh_node.h) against libfcl's on every node of a
+/// model; returns its number of leaves.
+template <typename BV>
+int checkNodeAccessors(const fcl::BVHModel<BV>& model) {
+  int leaves = 0;
+  for (int i = 0; i < model.getNumBVs(); ++i) {
+    const fcl::BVNodeBase& n = model.getBV(i);
+    EXPECT_EQ(detail::isLeaf(n), n.isLeaf()) << "node " << i;
+    if (n.isLeaf()) {
+      ++leaves;
+      EXPECT_EQ(detail::primitiveId(n), n.primitiveId()) << "node " << i;
+    } else {
+      EXPECT_EQ(detail::leftChild(n), n.leftChild()) << "node " << i;
+      EXPECT_EQ(detail::rightChild(n), n.rightChild()) << "node " << i;
+    }
+  }
+  return leaves;
+}
+
+// The traversal reads fcl's node encoding inline: it must agree with libfcl's own accessors,
+// on a point cloud's tree and on a mesh's (one leaf per vertex, per triangle).
+TEST(FclIntegration, InlineNodeAccessorsAgreeWithLibfcl) {
+  std::mt19937 rng(9);
+  const TriangleMesh<double> cloud = randomCloud<double>(rng, 3000, 2);
+  const TriangleMesh<double> mesh = tessellate(Superellipsoidd(1, 2, 3, 0.4, 1.6), 500);
+  EXPECT_EQ(checkNodeAccessors(*makeBVHModel<fcl::OBBRSSd>(cloud)), 3000);
+  EXPECT_EQ(checkNodeAccessors(*makeBVHModel<fcl::AABBd>(mesh)), int(mesh.triangles.size()));
+}
+
 TEST(FclIntegration, TraversalCullsFarVertices) {
   std::mt19937 rng(5);
   const auto shape = std::make_shared<Superellipsoidd>(1, 1, 1, 0.5, 0.5);

@@ -13,9 +13,11 @@
 #include <atomic>
 #include <functional>
 #include <random>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
+#include "common/tasks.h"
 #include "fcl_superellipsoid/batch_distance.h"
 #include "fcl_superellipsoid/fcl_integration.h"
 #include "fcl_superellipsoid/point_distance.h"
@@ -235,6 +237,34 @@ TYPED_TEST(ThreadSafetyTest, BroadphaseQueriesFromSeveralThreads) {
   const std::vector<S> expected = answers();
   ASSERT_GT(expected[0], S(0));  // contacts
   expectEveryThreadGets(expected, answers);
+}
+
+// The library's own tasks (common/tasks.h: TBB's, std::threads under TSan): every task runs and
+// its writes are seen after wait(); a task's exception comes back from wait(), and the group is
+// usable again; a group destroyed with a failed task waits for it and does not throw.
+TEST(ThreadSafety, TaskGroupRunsEveryTaskAndRethrows) {
+  std::vector<int> slots(64, 0);
+  {
+    detail::TaskGroup group;
+    for (int i = 0; i < 64; ++i) group.run([&slots, i] { slots[std::size_t(i)] = i + 1; });
+    group.wait();
+    for (int i = 0; i < 64; ++i) EXPECT_EQ(slots[std::size_t(i)], i + 1);
+    group.run([] { throw std::runtime_error("task 7 failed"); });
+    try {
+      group.wait();
+      ADD_FAILURE() << "no exception";
+    } catch (const std::runtime_error& e) {
+      EXPECT_STREQ(e.what(), "task 7 failed");
+    }
+    std::atomic<int> ran{0};
+    for (int i = 0; i < 8; ++i) group.run([&ran] { ++ran; });
+    group.wait();
+    EXPECT_EQ(ran.load(), 8);
+  }
+  EXPECT_NO_THROW({
+    detail::TaskGroup group;
+    group.run([] { throw std::runtime_error("dropped"); });
+  });
 }
 
 }  // namespace
