@@ -370,7 +370,6 @@ TYPED_TEST(FclIntegrationTest, BroadphaseWithTheCallbacks) {
   EXPECT_NEAR(ddata.result.min_distance, expected_distance, tolerance<S>());
 }
 
-// Culling: a large cloud far from most of the shape is answered from a small part of it.
 /// Checks the inline node accessors (fcl_glue/bvh_node.h) against libfcl's on every node of a
 /// model; returns its number of leaves.
 template <typename BV>
@@ -400,6 +399,7 @@ TEST(FclIntegration, InlineNodeAccessorsAgreeWithLibfcl) {
   EXPECT_EQ(checkNodeAccessors(*makeBVHModel<fcl::AABBd>(mesh)), int(mesh.triangles.size()));
 }
 
+// Culling: a large cloud far from most of the shape is answered from a small part of it.
 TEST(FclIntegration, TraversalCullsFarVertices) {
   std::mt19937 rng(5);
   const auto shape = std::make_shared<Superellipsoidd>(1, 1, 1, 0.5, 0.5);
