@@ -74,7 +74,6 @@ constexpr int kUnboundedPrimitives = 16;
 
 /// The axes along which boundsOf evaluates the support function, per BV.
 constexpr int kBoundAxes = 4;
-static_assert(2 * kBoundAxes <= kMaxLanes, "boundsOf's lanes hold two BVs' axes");
 
 /// boundsOf raises the lanes' support function by this fraction: more than their powers'
 /// difference from exact ones along a unit direction (test_batch_distance.cpp checks 4 ulps).
@@ -204,7 +203,7 @@ class VertexTraversal {
   /// the header); −infinity, without a test, for a node with at most kUnboundedPrimitives
   /// primitives: bounding its few vertices one by one (one gauge evaluation each) costs less
   /// than bounding its BV. The support function along both BVs' four axes (their box's three
-  /// and the line of the centres) is evaluated on SIMD lanes at once (gaugeLanes with h's
+  /// and the line of the centres) is evaluated on SIMD lanes at once (normOnLanes with h's
   /// nested norm), and raised by kLaneSupportSlack, so that it bounds h from above although
   /// the lanes' powers may differ from exact ones by a few ulps: a bound stays a lower bound.
   std::array<S, 2> boundsOf(int first, int second) {
@@ -213,6 +212,7 @@ class VertexTraversal {
     SweptBox<S> boxes[2];
     Vector3<S> offsets[2];  // the shape's centre from the box's, in M
     bool bounded[2];
+    resizeLanes(2 * kBoundAxes);
     std::size_t lanes = 0;
     for (int k = 0; k < 2; ++k) {
       const fcl::BVNode<BV>& n = model_.getBV(nodes[k]);
@@ -224,18 +224,12 @@ class VertexTraversal {
       offsets[k] = centre_M_ - boxes[k].centre;
       for (int i = 0; i < kBoundAxes; ++i) {
         const Vector3<S> w = (R_MS_.transpose() * boundAxis(boxes[k], offsets[k], i)).cwiseAbs();
-        for (int c = 0; c < 3; ++c) lane_support_[c][lanes] = w[c];
+        for (int c = 0; c < 3; ++c) lane_query_[c][lanes] = w[c];
         ++lanes;
       }
     }
     if (lanes == 0) return bounds;
-    const std::size_t padded = (lanes + kVectorLanes<S> - 1) / kVectorLanes<S> * kVectorLanes<S>;
-    for (std::size_t l = lanes; l < padded; ++l) {  // the padding repeats the first lane
-      for (int c = 0; c < 3; ++c) lane_support_[c][l] = lane_support_[c][0];
-    }
-    const S* const query[3] = {lane_support_[0], lane_support_[1], lane_support_[2]};
-    S h[kMaxLanes];
-    gaugeLanes(support_, query, h, padded);
+    const std::vector<S>& h = normOnLanes(support_, lanes);
     std::size_t lane = 0;
     for (int k = 0; k < 2; ++k) {
       if (!bounded[k]) continue;
@@ -478,29 +472,23 @@ class VertexTraversal {
   void testForCollision(const std::vector<int>& vertices) {
     const std::size_t n = vertices.size();
     if (n == 0) return;
-    const std::size_t padded = (n + kMaxLanes - 1) / kMaxLanes * kMaxLanes;
-    for (std::vector<S>& coordinate : lane_query_) coordinate.resize(padded);
-    lane_gauge_.resize(padded);
+    resizeLanes(n);
     for (std::size_t k = 0; k < n; ++k) {
       const Vector3<S> p_S = inShapeFrame(vertices[k]).cwiseAbs();
       for (int i = 0; i < 3; ++i) lane_query_[i][k] = p_S[i];
     }
-    for (std::vector<S>& coordinate : lane_query_) {  // the padding repeats the last vertex
-      std::fill(coordinate.begin() + std::ptrdiff_t(n), coordinate.end(), coordinate[n - 1]);
-    }
-    const S* const query[3] = {lane_query_[0].data(), lane_query_[1].data(), lane_query_[2].data()};
-    gaugeLanes(gauge_, query, lane_gauge_.data(), padded);
+    const std::vector<S>& gauge = normOnLanes(gauge_, n);
     for (std::size_t k = 0; k < n; ++k) {
       if (full()) return;
       ++stats_.vertices_bounded;
-      if (!(lane_gauge_[k] < S(1))) continue;  // on or outside the surface
+      if (!(gauge[k] < S(1))) continue;  // on or outside the surface
       if (!with_depth_) {
         VertexHit<S> hit;
         hit.vertex = vertices[k];
         hits_.push_back(hit);
         continue;
       }
-      inside_.push_back(vertices[k]);  // solved together after the traversal
+      inside_.push_back(vertices[k]);  // solved in blocks (solveInside)
     }
   }
 
@@ -531,6 +519,25 @@ class VertexTraversal {
     if (with_depth_) solveInside(false);
   }
 
+  /// Room for n first-octant points in lane_query_, whole vectors of lanes.
+  void resizeLanes(std::size_t n) {
+    const std::size_t padded = (n + kVectorLanes<S> - 1) / kVectorLanes<S> * kVectorLanes<S>;
+    for (std::vector<S>& coordinate : lane_query_) coordinate.resize(padded);
+    lane_value_.resize(padded);
+  }
+
+  /// The nested norm at lane_query_'s first n points (n ≥ 1), on SIMD lanes (gaugeLanes); the
+  /// padding repeats the last point. The values are in the returned buffer, reused by the next
+  /// call.
+  const std::vector<S>& normOnLanes(const NestedNorm<S>& norm, std::size_t n) {
+    for (std::vector<S>& coordinate : lane_query_) {
+      std::fill(coordinate.begin() + std::ptrdiff_t(n), coordinate.end(), coordinate[n - 1]);
+    }
+    const S* const query[3] = {lane_query_[0].data(), lane_query_[1].data(), lane_query_[2].data()};
+    gaugeLanes(norm, query, lane_value_.data(), lane_value_.size());
+    return lane_value_;
+  }
+
   /// Prefetches two nodes whole (a node with its BV spans several cache lines), so that their
   /// cache misses overlap instead of following each other.
   void prefetchNodes(int a, int b) const {
@@ -554,8 +561,7 @@ class VertexTraversal {
   std::unordered_set<int> seen_;                   // triangle meshes: vertices already tested
   std::vector<int> subtree_, level_, next_level_;  // gatherSubtree's buffers
   std::vector<int> pending_;                       // subtrees found, not yet classified
-  std::vector<S> lane_query_[3], lane_gauge_;      // testForCollision's lanes
-  S lane_support_[3][kMaxLanes];                   // boundsOf's lanes
+  std::vector<S> lane_query_[3], lane_value_;      // normOnLanes's points and values
   // Distance: the least upper bound so far, the vertices that may still beat it, and with
   // stop_at_penetration the first vertex found inside.
   struct Candidate {
