@@ -29,6 +29,13 @@ S absoluteTolerance(S relative_tolerance, S size, S query_norm) {
          S(kRoundingFloorUlps) * std::numeric_limits<S>::epsilon() * (query_norm + size);
 }
 
+/// Outside, where the primal formulation goes first (exponents ≤ 1 or nearly), a radial start
+/// whose paper Eq. 7 error exceeds this × size (far from a box-like shape, where the radial
+/// projection lands near a corner) competes with the support point of Q's direction; the one
+/// of smaller error goes first. (The dual-first shapes' radial start fares better there, and
+/// this start's two evaluations would cost more than its iterations save.)
+constexpr double kSupportStartError = 1;
+
 /// Each start may use at most this many iterations of the query's shared budget
 /// (DistanceOptions::max_iterations), so one start creeping along a saddle cannot starve the
 /// start that leads to the answer.

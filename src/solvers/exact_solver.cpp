@@ -22,7 +22,8 @@
 // reduce the error is halved, up to four times.
 //
 // Starts: outside, the radial projection (the problem is convex: one minimum; a caller's warm
-// start, Query::hint, goes first and saves the rest when it converges), then, if that
+// start, Query::hint, goes first and saves the rest when it converges; far from a box-like
+// shape the support point of Q's direction goes first if its error is smaller), then, if that
 // stalls, the surface points whose normals point at Q and along the contact direction found
 // (∇h(n), the support point), and the radial projection of Q clamped into the bounding box; if
 // Newton still stalls, the bracketed nested projection of outside_projection.h settles it. Inside,
@@ -93,6 +94,15 @@ class ExactSolver {
     // Outside the problem is convex: a warm start that converges is the answer.
     const Candidate<S> radial = candidateFrom(y_, at_y);
     Candidate<S> first = warm ? candidateOnRay(q_.hint->cwiseAbs()) : radial;
+    if (!inside_ && !warm && primal_first_ &&
+        radial.error > S(rules::kSupportStartError) * q_.shape.size()) {
+      // Far from a box-like shape the radial start lands near a corner whose normal points
+      // well away from Q. The surface point whose normal is Q's direction (∇h is
+      // 0-homogeneous: h's gradient at Q itself) is within about size/‖Q‖ of the answer's
+      // normal; the start with the smaller error goes first.
+      const Candidate<S> support = candidateOnRay(dual_.gradient(y_));
+      if (support.error < radial.error) first = support;
+    }
     if (inside_ && g_y < S(rules::kCoverGauge)) {
       // Deeper inside, the first start is the nearer to Q of the radial projection and the
       // direction cover's guess of the nearest point's normal (shape/direction_cover.h), often
