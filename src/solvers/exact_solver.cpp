@@ -42,6 +42,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <type_traits>
 #include <utility>
 
 #include "shape/nested_norm.h"
@@ -506,12 +507,13 @@ class ExactSolver {
   /// h's evaluation at a candidate's normal n from the candidate's own primal evaluation: ∇h(n)
   /// is the candidate's point, and on the tangent plane ∇²h(n) is the inverse of the shape
   /// operator W = Tᵀ∇²G·T/‖∇G‖ (dX = ∇²h·dn, dn = W·dX; ∇²h·n = 0, h being 1-homogeneous). Saves
-  /// the dual's first evaluation of each start inside, where the starts are many; h is evaluated
-  /// instead outside (in float, on a flat disc, the derived block sent an outside start astray:
-  /// docs/math.md → "The Exact solver") and where W is not positive definite.
+  /// the dual's first evaluation of each start (outside, one of the 4–6 of a dual-first shape's
+  /// query); h is evaluated instead outside in float (on a flat disc the derived block sent an
+  /// outside start astray: docs/math.md → "The Exact solver") and where W is not positive
+  /// definite.
   NestedNormEval<S> dualAtCandidate(const Candidate<S>& c) const {
     const Vector3<S>& n = c.normal;
-    if (!inside_) return dual_.evaluate(n, true);
+    if (!inside_ && !std::is_same<S, double>::value) return dual_.evaluate(n, true);
     const S g = c.gradient.norm();
     const std::pair<Vector3<S>, Vector3<S>> basis = tangentBasis(n);
     const Vector3<S>&t1 = basis.first, &t2 = basis.second;
