@@ -186,17 +186,21 @@ struct NestedNorm {
     const S tr = r / out.value, t3 = u[2] / out.value;
 
     // (t)^(p−2) = t^(p−1)/t; a floor on t keeps it finite when p < 2 (the Hessian is
-    // unbounded there: this is the singularity the solver works around, not hides).
+    // unbounded there: this is the singularity the solver works around, not hides). For p = 2
+    // (ε = 1) it is 1, also at t = 0, where the quotient would give 0/floor = 0: on the plane
+    // y = 0 of a round cross-section that lost the circle's curvature 1/r from ∂²G/∂y².
     const S floor = std::sqrt(std::numeric_limits<S>::min());
-    auto powMinus2 = [floor](S t, S pow_pm1) { return pow_pm1 / std::max(t, floor); };
+    auto powMinus2 = [floor](S t, S pow_pm1, S p) {
+      return p == S(2) ? S(1) : pow_pm1 / std::max(t, floor);
+    };
     Eigen::Matrix<S, 3, 3> h_u = Eigen::Matrix<S, 3, 3>::Zero();
     if (r > S(0)) {
       const S c1 = (p1 - S(1)) / r;
-      const S r11 = c1 * powMinus2(t1, r1) * (t2 * r2);  // (t2)^p1 = t2·t2^(p1−1)
-      const S r22 = c1 * powMinus2(t2, r2) * (t1 * r1);
+      const S r11 = c1 * powMinus2(t1, r1, p1) * (t2 * r2);  // (t2)^p1 = t2·t2^(p1−1)
+      const S r22 = c1 * powMinus2(t2, r2, p1) * (t1 * r1);
       const S r12 = -c1 * r1 * r2;
       const S c2 = (p2 - S(1)) / out.value;
-      const S g_rr = c2 * powMinus2(tr, g_r) * (t3 * g_3);
+      const S g_rr = c2 * powMinus2(tr, g_r, p2) * (t3 * g_3);
       const S g_r3 = -c2 * g_r * g_3;
       h_u(0, 0) = g_rr * r1 * r1 + g_r * r11;
       h_u(1, 1) = g_rr * r2 * r2 + g_r * r22;
@@ -205,7 +209,7 @@ struct NestedNorm {
       h_u(1, 2) = h_u(2, 1) = g_r3 * r2;
     }
     const S c2 = (p2 - S(1)) / out.value;
-    h_u(2, 2) = c2 * powMinus2(t3, g_3) * (tr * g_r);
+    h_u(2, 2) = c2 * powMinus2(t3, g_3, p2) * (tr * g_r);
     out.hessian = scale.asDiagonal() * h_u * scale.asDiagonal();
     return out;
   }

@@ -213,6 +213,71 @@ bool hessianBallCertified(const NestedNorm<S>& gauge, const Vector3<S>& y,
   return hessianBoxCertifies(gauge, lo, hi, nearest, gradient_at_n, distance);
 }
 
+/// The Hessian bound of a surface of revolution's meridian section: with ε1 = 1 and equal x and
+/// y radii a, the solid is {g(s, z) ≤ 1}, s the distance from the z axis and
+/// g(s, z) = ‖(s/a, z/c)‖_p2 (G on the plane y = 0). Its Hessian is the rank-one
+///   ∇²g = (p2 − 1)/g·(ts·tz)^(p2−2)·(tz/a, −ts/c)(tz/a, −ts/c)ᵀ,  ts = (s/a)/g, tz = (z/c)/g,
+/// bounded over the box [lo, hi] of the (s, z) quadrant like the second level of
+/// hessianNormBound, with crease[0] for the axis s = 0 (the tip of a shape with ε2 > 1: ts → 0)
+/// and crease[2] for z = 0. No circle's curvature 1/s: that is the third dimension's, which the
+/// meridian disc does not need (hessianDiscCertified). Regular part +∞ where the box reaches
+/// both (the centre of a creased section).
+template <typename S>
+HessianBound<S> meridianHessianBound(const NestedNorm<S>& gauge, S s_lo, S s_hi, S z_lo, S z_hi) {
+  const S p = gauge.p2, k = p - S(2), one = S(1);
+  const S ul = s_lo * gauge.scale[0], uh = s_hi * gauge.scale[0];
+  const S vl = z_lo * gauge.scale[2], vh = z_hi * gauge.scale[2];
+  auto norm = [&](S a, S b) { return boundNorm(a, b, p, gauge.inv_p2); };
+  const S g_lo = norm(ul, vl), g_hi = norm(uh, vh);
+  const S g_sz = norm(ul, vh), g_zs = norm(uh, vl);  // mixed corners
+  const S ts_lo = ul / g_sz, ts_hi = std::min(one, uh / g_zs);
+  const S tz_lo = vl / g_zs, tz_hi = std::min(one, vh / g_sz);
+  const S a2 = gauge.scale[0] * gauge.scale[0], c2 = gauge.scale[2] * gauge.scale[2];
+  const S factor = (p - one) / g_lo * (tz_hi * tz_hi * a2 + ts_hi * ts_hi * c2);
+  HessianBound<S> bound;
+  if (k >= S(0)) {
+    bound.regular = factor * boundPow(ts_hi * tz_hi, k);
+  } else if (ul == S(0) && vl == S(0)) {
+    bound.regular = std::numeric_limits<S>::infinity();
+  } else if (ul == S(0)) {  // ts ≥ (s/a)/g_hi
+    bound.crease[0] = factor * boundPow(gauge.scale[0] / g_hi, k) * boundPow(tz_lo, k);
+  } else if (vl == S(0)) {  // tz ≥ (z/c)/g_hi
+    bound.crease[2] = factor * boundPow(gauge.scale[2] / g_hi, k) * boundPow(ts_lo, k);
+  } else {
+    bound.regular = factor * boundPow(ts_lo * tz_lo, k);
+  }
+  return bound;
+}
+
+/// The Hessian-ball certificate on a surface of revolution about z, in Q's meridian plane
+/// (docs/math.md → "The Hessian-ball certificate"): y = (ρ, 0, z) and the answer N = (s, 0, z)
+/// on the plane y = 0. The ball B(Q', d) lies inside the solid exactly when its meridian disc,
+/// the disc of radius d about (ρ', z') in the (s, z) plane with s < 0 included, lies inside the
+/// section {g(|s|, |z|) ≤ 1}: a point of the ball at height z'' is at most ρ' + w from the axis
+/// (w the radius of the ball's slice there), and the section, convex and symmetric in s,
+/// holds the whole segment from −(ρ' + w) to ρ' + w once it holds the disc's two points of that
+/// height. The disc is certified as the ball is in 3D, with meridianHessianBound: the segments
+/// from N are straight in (s, z), so a crease at the axis (the tip, ε2 > 1) is integrated
+/// along them like one at a coordinate plane, where the 3D bound has none (its box reaches the
+/// z axis) — the shallow points below a tip are certified here.
+template <typename S>
+bool hessianDiscCertified(const NestedNorm<S>& gauge, const Vector3<S>& y,
+                          const Vector3<S>& nearest, const Vector3<S>& gradient_at_n, S distance,
+                          S error) {
+  const S reach = distance + error;
+  const HessianBound<S> bound =
+      meridianHessianBound(gauge, std::max(S(0), y[0] - reach), y[0] + reach,
+                           std::max(S(0), y[2] - reach), y[2] + reach);
+  const S k = gauge.p2 - S(2);
+  S m = bound.regular;
+  for (int i : {0, 2}) {
+    if (bound.crease[i] != S(0)) {
+      m += S(2) * bound.crease[i] * boundPow(nearest[i], k) / (S(2) + k);  // ∞ at N on it
+    }
+  }
+  return S(1.01) * m * distance <= gradient_at_n.norm();
+}
+
 /// The same certificate for the part of the ball within `radius` of N only (docs/math.md →
 /// "The direction cover"). A point P of B(Q', d) with ‖P − N‖ ≤ r is N − a·n + b (b ⊥ n,
 /// ‖b‖ ≤ r) with a ≥ ‖P − N‖²/(2d); on the sphere a = ‖P − N‖²/(2d) ≤ r²/(2d). Mirrored into

@@ -34,7 +34,8 @@
 // Below G = 0.9 the direction cover's guess (shape/direction_cover.h) competes with the radial
 // start for first place. The search stops at the first answer a certificate proves global
 // (rolling ball, Hessian ball, direction cover at any depth: searchInside). Each start has its own
-// share of one iteration budget.
+// share of one iteration budget. On a surface of revolution about z the whole search runs in Q's
+// meridian half-plane (the constructor), where the nearest points are.
 //
 // Convergence is judged by the paper's error (Eq. 7) so all methods share one yardstick.
 
@@ -76,7 +77,23 @@ class ExactSolver {
         y_(q.x.cwiseAbs()),
         primal_(NestedNorm<S>::gauge(q.shape)),
         dual_(NestedNorm<S>::support(q.shape)),
-        primal_first_(primalIsSmoother(q.shape)) {}
+        primal_first_(primalIsSmoother(q.shape)),
+        revolution_(q.shape.eps1() == S(1) && q.shape.radii()[0] == q.shape.radii()[1]) {
+    if (revolution_) {
+      // A surface of revolution about z: Q's nearest points lie in its meridian half-plane
+      // (rotating a surface point into it about z brings it no farther from Q), so the solver
+      // works there, with Q rotated about z onto the half-plane y = 0, x ≥ 0; finish() turns
+      // the answer back. Every iterate stays on that plane (G's and h's derivatives across it
+      // vanish there exactly), and the ring of nearest points that Q near the axis has on a
+      // round cross-section becomes a single point.
+      const S rho = std::hypot(y_[0], y_[1]);
+      if (rho > S(0)) {
+        cos_ = y_[0] / rho;
+        sin_ = y_[1] / rho;
+      }
+      y_ = Vector3<S>(rho, S(0), y_[2]);
+    }
+  }
 
   PointDistanceResult<S> solve() {
     // One evaluation at Q gives both G(Q), which says the side, and the radial start.
@@ -94,7 +111,7 @@ class ExactSolver {
     const bool warm = !inside_ && q_.hint != nullptr && !q_.hint->isZero(S(0));
     // Outside the problem is convex: a warm start that converges is the answer.
     const Candidate<S> radial = candidateFrom(y_, at_y);
-    Candidate<S> first = warm ? candidateOnRay(q_.hint->cwiseAbs()) : radial;
+    Candidate<S> first = warm ? candidateOnRay(toMeridian(q_.hint->cwiseAbs())) : radial;
     if (!inside_ && !warm && primal_first_ &&
         radial.error > S(rules::kSupportStartError) * q_.shape.size()) {
       // Far from a box-like shape the radial start lands near a corner whose normal points
@@ -163,9 +180,7 @@ class ExactSolver {
       if (rules::certifiedGlobal(distance, q_.tolerance, rolling_radius)) return true;
       if (best->point == checked) return false;
       checked = best->point;
-      return hessianBallCertified(primal_, y_, best->point, best->gradient, distance,
-                                  best->error) ||
-             coverCertified(*best, distance);
+      return ballCertified(*best, distance) || coverCertified(*best, distance);
     };
     if (certified()) return;
     // Deeper inside, the second start is the one solve() did not take (the radial projection
@@ -175,8 +190,10 @@ class ExactSolver {
       tryStart(second_start_, best);
       if (certified()) return;
     }
-    for (const Vector3<S>& start : axisProjections()) {
-      tryStart(start, best);
+    const std::array<Vector3<S>, 3> projections = axisProjections();
+    for (int i = 0; i < 3; ++i) {
+      if (revolution_ && i == 1) continue;  // in the meridian plane: the x one's twin
+      tryStart(projections[i], best);
       if (certified()) return;
     }
     tryRingRotations(best);  // if nothing converged: a start creeping along a ring (below)
@@ -218,6 +235,17 @@ class ExactSolver {
       const Candidate<S> other = solveAtCentre();
       if (isBetter(other, *best)) *best = other;
     }
+  }
+
+  /// The Hessian-ball certificate (ball_certificate.h) of a converged inside answer c at distance
+  /// d from Q; on a surface of revolution, of its meridian disc (hessianDiscCertified), which
+  /// also holds below a sharp tip, where the ball's box reaches the axis.
+  bool ballCertified(const Candidate<S>& c, S distance) const {
+    if (!revolution_) {
+      return hessianBallCertified(primal_, y_, c.point, c.gradient, distance, c.error);
+    }
+    const Vector3<S> in_plane(std::hypot(c.point[0], c.point[1]), S(0), c.point[2]);
+    return hessianDiscCertified(primal_, y_, in_plane, c.gradient, distance, c.error);
   }
 
   /// The direction cover's certificate (ball_certificate.h, directionCoverCertified) for a
@@ -353,8 +381,26 @@ class ExactSolver {
   /// The candidate where the ray from the centre through `ray` meets the surface, with G's
   /// gradient and Hessian there, from one evaluation at `ray` itself: ∇G is 0-homogeneous and
   /// ∇²G is (−1)-homogeneous, so at N = ray/G(ray) they are ∇G(ray) and G(ray)·∇²G(ray).
+  /// On a surface of revolution, a start off the meridian plane y = 0 is rotated onto it about
+  /// z (G is unchanged); the Newton iterates on it pass through unchanged (y exactly 0).
   Candidate<S> candidateOnRay(const Vector3<S>& ray) const {
+    if (revolution_ && ray[1] != S(0)) {
+      const Vector3<S> in_plane(std::hypot(ray[0], ray[1]), S(0), ray[2]);
+      return candidateFrom(in_plane, primal_.evaluate(in_plane, true));
+    }
     return candidateFrom(ray, primal_.evaluate(ray, true));
+  }
+
+  /// A first-octant vector of Q's frame in the solver's (rotated onto the meridian plane on a
+  /// surface of revolution, the mirror image across y = 0 taken where it turns negative),
+  /// and back (toQuery; the solver's vectors have y ≥ 0).
+  Vector3<S> toMeridian(const Vector3<S>& v) const {
+    if (!revolution_) return v;
+    return Vector3<S>(v[0] * cos_ + v[1] * sin_, std::abs(v[1] * cos_ - v[0] * sin_), v[2]);
+  }
+  Vector3<S> toQuery(const Vector3<S>& v) const {
+    if (!revolution_) return v;
+    return Vector3<S>(v[0] * cos_ - v[1] * sin_, v[0] * sin_ + v[1] * cos_, v[2]);
   }
 
   /// The same from G's evaluation `e` (with the Hessian) at `ray`.
@@ -659,7 +705,7 @@ class ExactSolver {
 
   /// Reflects the first-octant candidate back to Q's octant.
   PointDistanceResult<S> finish(const Candidate<S>& c, bool inside) const {
-    PointDistanceResult<S> r = fromFirstOctant(q_.x, c.point, c.normal, inside);
+    PointDistanceResult<S> r = fromFirstOctant(q_.x, toQuery(c.point), toQuery(c.normal), inside);
     r.error = c.error;
     r.iterations = c.iterations;
     r.converged = c.error <= q_.tolerance;
@@ -669,8 +715,10 @@ class ExactSolver {
   const Query<S>& q_;
   Vector3<S> y_;
   NestedNorm<S> primal_, dual_;
-  bool primal_first_;       // which formulation refine() tries first
-  int cover_attempts_ = 0;  // coverCertified's, at most exact_rules::kCoverAttempts
+  bool primal_first_;          // which formulation refine() tries first
+  bool revolution_;            // a surface of revolution about z: y_ is on the meridian plane
+  S cos_ = S(1), sin_ = S(0);  // ... and Q's azimuth, which toQuery turns the answer by
+  int cover_attempts_ = 0;     // coverCertified's, at most exact_rules::kCoverAttempts
   int split_budget_ = DirectionCover<S>::kSplitSupportPoints;  // coverCertified's, decremented
   Vector3<S> second_start_ = Vector3<S>::Zero();  // deeper inside: the start solve() did not take
   bool inside_ = false;

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include "ball_checks.h"
@@ -225,6 +226,111 @@ TEST(HessianBall, InsideAnswersOnCreasedShapesStayGlobal) {
       }
     }
   }
+}
+
+// Surfaces of revolution about z (ε1 = 1, equal x and y radii), the meridian disc's
+// certificate (hessianDiscCertified). Their tips (ε2 > 1) and round equators, at several
+// aspects.
+const std::array<double, 5> kRevolutions[] = {{1, 1, 1, 1, 1.6},
+                                              {1, 1, 1, 1, 1.9},
+                                              {1, 1, 1, 1, 0.3},
+                                              {2, 2, 0.7, 1, 1.3},
+                                              {0.8, 0.8, 2, 1, 1.5}};
+
+/// The spectral norm of the reference gauge's Hessian in the meridian plane y = 0, at (s, z),
+/// by central differences in long double (step h) along x and z.
+long double referenceMeridianHessianNorm(const test::ReferenceDistance& reference, long double s,
+                                         long double z, long double h) {
+  auto at = [&](long double ds, long double dz) { return reference.gauge({s + ds, 0, z + dz}); };
+  const long double c = at(0, 0);
+  const long double ss = (at(h, 0) - 2 * c + at(-h, 0)) / (h * h);
+  const long double zz = (at(0, h) - 2 * c + at(0, -h)) / (h * h);
+  const long double sz = (at(h, h) - at(h, -h) - at(-h, h) + at(-h, -h)) / (4 * h * h);
+  const long double mean = (ss + zz) / 2, half_gap = std::hypot((ss - zz) / 2, sz);
+  return std::max(std::abs(mean + half_gap), std::abs(mean - half_gap));
+}
+
+TEST(HessianDisc, BoundsTheMeridianHessianOverItsBox) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(0, 1);
+  int boxes = 0, axis_boxes = 0;
+  for (const auto& p : kRevolutions) {
+    const Superellipsoid<double> shape{p[0], p[1], p[2], p[3], p[4]};
+    SCOPED_TRACE(test::describe(shape));
+    const test::ReferenceDistance reference({p[0], p[1], p[2]}, p[3], p[4]);
+    const auto gauge = detail::NestedNorm<double>::gauge(shape);
+    for (int k = 0; k < 60; ++k) {
+      // A box around a point of the quadrant inside the section, half-width up to 0.2 × size;
+      // a third of them near the axis, so that they reach it.
+      const double s = (k % 3 == 0 ? 0.05 : 0.8) * u(rng) * p[0], z = 0.8 * u(rng) * p[2];
+      const double half = shape.size() * 0.2 * std::pow(u(rng), 2);
+      const double s_lo = std::max(0.0, s - half), z_lo = std::max(0.0, z - half);
+      const detail::HessianBound<double> bound =
+          detail::meridianHessianBound(gauge, s_lo, s + half, z_lo, z + half);
+      if (!std::isfinite(bound.regular)) continue;  // both creases: nothing is claimed
+      ++boxes;
+      if (bound.crease[0] > 0) ++axis_boxes;
+      for (int j = 0; j < 25; ++j) {
+        const long double ps = s_lo + (s + half - s_lo) * u(rng);
+        const long double pz = z_lo + (z + half - z_lo) * u(rng);
+        long double h = std::min({1e-4L * shape.size(), 0.01L * ps, 0.01L * pz});
+        if (h < 1e-7L * shape.size()) continue;  // too near an axis for a long-double difference
+        const long double norm = referenceMeridianHessianNorm(reference, ps, pz, h);
+        const double k_exp = gauge.p2 - 2;
+        double at_p = bound.regular;
+        if (bound.crease[0] > 0) at_p += bound.crease[0] * std::pow(double(ps), k_exp);
+        if (bound.crease[2] > 0) at_p += bound.crease[2] * std::pow(double(pz), k_exp);
+        EXPECT_LE(double(norm), at_p * (1 + 1e-4) + 1e-9)
+            << "at (s, z) = " << double(ps) << ", " << double(pz) << " in the box " << s_lo
+            << " .. " << s + half << " × " << z_lo << " .. " << z + half;
+      }
+    }
+  }
+  std::printf("meridian bound: %d boxes, %d reaching the axis\n", boxes, axis_boxes);
+  EXPECT_GT(boxes, 200);
+  EXPECT_GT(axis_boxes, 30);  // boxes reaching the axis, bounded by its crease's power
+}
+
+// Stationary points by construction in the meridian plane y = 0: N = (s, 0, z) on the section,
+// many near the tip or the axis, Q = N − d·n with d from 1e-3 to 1.6 × the smallest radius
+// (deep ones are usually not the global answer). Where the disc certificate holds, the 3D
+// ball's sphere is inside the reference gauge and the reference's distance is d; it also holds
+// below tips, where the ball's 3D box reaches the z axis and hessianBallCertified cannot.
+TEST(HessianDisc, CertifiesOnlyGlobalNearestPoints) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(0, 1);
+  int certified = 0, beyond_3d = 0, total = 0;
+  for (const auto& p : kRevolutions) {
+    const Superellipsoid<double> shape{p[0], p[1], p[2], p[3], p[4]};
+    SCOPED_TRACE(test::describe(shape));
+    const test::ReferenceDistance reference({p[0], p[1], p[2]}, p[3], p[4]);
+    const auto gauge = detail::NestedNorm<double>::gauge(shape);
+    const double min_radius = std::min(p[0], p[2]), q = gauge.p2;
+    for (int k = 0; k < 80; ++k) {
+      // z/c = t on the section; half the points have t within 1e-4 .. 1e-1 of the tip.
+      const double t = k % 2 ? 1 - std::pow(10.0, -4 + 3 * u(rng)) : u(rng);
+      const Vector3<double> n_point(p[0] * std::pow(1 - std::pow(t, q), 1 / q), 0, p[2] * t);
+      const Vector3<double> gradient = gauge.evaluate(n_point, false).gradient;
+      const Vector3<double> normal = gradient.normalized();
+      const double d = min_radius * std::pow(10.0, -3 + 3.2 * u(rng));
+      const Vector3<double> y = n_point - d * normal;
+      if ((y.array() < 0).any() || !(n_point[0] > 0)) continue;  // left the quadrant
+      ++total;
+      if (!detail::hessianDiscCertified(gauge, y, n_point, gradient, d, 0.0)) continue;
+      ++certified;
+      if (!detail::hessianBallCertified(gauge, y, n_point, gradient, d, 0.0)) ++beyond_3d;
+      const long double worst = test::worstGaugeOnSphere(reference, y, d, 200, rng);
+      EXPECT_LE(double(worst), 1 + 1e-12) << "Q = " << y.transpose() << ", d = " << d;
+      const auto truth = reference.query({y[0], y[1], y[2]});
+      EXPECT_NEAR(double(-truth.distance), d, 1e-9 * shape.size())
+          << "certified a point that is not the nearest: Q = " << y.transpose()
+          << ", N = " << n_point.transpose();
+    }
+  }
+  std::printf("meridian disc: %d of %d certified, %d of them not by the 3D ball\n", certified,
+              total, beyond_3d);
+  EXPECT_GT(certified, total / 5) << "the certificate should hold on many shallow points";
+  EXPECT_GT(beyond_3d, 20) << "below the tips the disc should certify what the ball cannot";
 }
 
 }  // namespace

@@ -451,6 +451,66 @@ TYPED_TEST(PointDistanceTest, NearlyRoundShapesConvergeJustOffTheirAxis) {
   }
 }
 
+// Surfaces of revolution (ε1 = 1, equal x and y radii): the solver works in Q's meridian
+// half-plane (exact_solver.cpp), where the ring of nearest points that Q near the axis has is a
+// single point. Inside points from just below the surface to deep (at the tips of the creased
+// ones too), just off the axis and on it, each at two azimuths. Each answer converges, keeps
+// the contract, agrees with the long-double reference (never farther; equal where its grid is
+// trusted, as in ExactMatchesReferenceInside) and with the answer at the other azimuth, and its
+// point lies in Q's meridian half-plane (to rounding: the solver turns it back by Q's azimuth).
+TYPED_TEST(PointDistanceTest, SurfacesOfRevolutionAnswerInTheMeridianPlane) {
+  using S = TypeParam;
+  const auto options = DistanceOptions<S>::of(DistanceMethod::kExact);
+  const std::vector<std::array<double, 5>> shapes = {{1, 1, 1, 1, 0.3},
+                                                     {1, 1, 1, 1, 1.6},
+                                                     {1, 1, 1, 1, 1.9},
+                                                     {1.5, 1.5, 0.8, 1, 1.3},
+                                                     {1, 1, 2, 1, 0.7}};
+  test::AngleSampler angles(31);
+  for (const auto& c : shapes) {
+    const Superellipsoid<S> shape = makeShape<S>({c[0], c[1], c[2]}, c[3], c[4]);
+    SCOPED_TRACE(test::describe(shape));
+    const test::ReferenceDistance reference({c[0], c[1], c[2]}, c[3], c[4]);
+    const double size = shape.size(), target = test::exactTarget<S>(c[3], c[4]);
+    const double small = shape.radii().minCoeff();
+    std::vector<Vector3<S>> points;
+    for (int k = 0; k < 8; ++k) {  // below random surface points
+      const auto [eta, omega] = angles();
+      const Vector3<S> p = shape.surfacePoint(S(eta), S(omega));
+      const double depth = std::vector<double>{1e-9, 0.015, 0.1, 0.4}[k % 4] * small;
+      points.push_back(p - S(depth) * shape.normal(p));
+    }
+    for (double height : {0.985, 0.9, 0.5, 0.0}) {  // just off the axis, and on it
+      for (double off : {1e-3, 0.0}) {
+        points.push_back(Vector3<S>(S(off * small), S(0), S(height * c[2])));
+      }
+    }
+    for (const Vector3<S>& x0 : points) {
+      for (double azimuth : {0.3, 2.0}) {
+        const S cs = S(std::cos(azimuth)), sn = S(std::sin(azimuth));
+        const Vector3<S> x(x0[0] * cs - x0[1] * sn, x0[0] * sn + x0[1] * cs, x0[2]);
+        SCOPED_TRACE("Q = " + std::to_string(x[0]) + ", " + std::to_string(x[1]) + ", " +
+                     std::to_string(x[2]));
+        const auto r = expectConvergedNoFartherThanReference(shape, x, options, target, reference);
+        const bool trusted = shape.radii().maxCoeff() <= 2 * small;
+        const auto truth = reference.query({x[0], x[1], x[2]});
+        if (trusted) EXPECT_NEAR(double(r.distance), double(truth.distance), target * size);
+        const auto turned = pointDistance(shape, x0, options);
+        EXPECT_NEAR(double(r.distance), double(turned.distance), target * size);
+        const double q_radius = std::hypot(double(x[0]), double(x[1]));
+        const double n_radius = std::hypot(double(r.nearest_point[0]), double(r.nearest_point[1]));
+        if (q_radius > 0 && n_radius > target * size) {
+          const double cross =
+              double(x[0]) * r.nearest_point[1] - double(x[1]) * r.nearest_point[0];
+          const double dot = double(x[0]) * r.nearest_point[0] + double(x[1]) * r.nearest_point[1];
+          EXPECT_LE(std::abs(std::atan2(cross, dot)), 1e3 * std::numeric_limits<S>::epsilon())
+              << "the nearest point is off Q's meridian: " << r.nearest_point.transpose();
+        }
+      }
+    }
+  }
+}
+
 // Shapes with a nearly round cross-section and ε2 ≠ 1, queried near their centre
 // (docs/hardening.md, finding 13). The nearest points lie near a ring (at ±45° latitude where
 // ε2 > 1, on the equator where ε2 < 1), and Q's small offset from the centre makes the valley
