@@ -221,17 +221,30 @@ bool hessianBallCertified(const NestedNorm<S>& gauge, const Vector3<S>& y,
 /// hessianNormBound, with crease[0] for the axis s = 0 (the tip of a shape with ε2 > 1: ts → 0)
 /// and crease[2] for z = 0. No circle's curvature 1/s: that is the third dimension's, which the
 /// meridian disc does not need (hessianDiscCertified). Regular part +∞ where the box reaches
-/// both (the centre of a creased section).
+/// both (the centre of a creased section). `quick`: each norm at the box's corners bracketed
+/// without a power, between the 2-norm and the 1-norm (p2 ≤ 2) or the max norm and the 2-norm
+/// (p2 ≥ 2), each within a factor √2 of it; tried first.
 template <typename S>
-HessianBound<S> meridianHessianBound(const NestedNorm<S>& gauge, S s_lo, S s_hi, S z_lo, S z_hi) {
+HessianBound<S> meridianHessianBound(const NestedNorm<S>& gauge, S s_lo, S s_hi, S z_lo, S z_hi,
+                                     bool quick = false) {
   const S p = gauge.p2, k = p - S(2), one = S(1);
   const S ul = s_lo * gauge.scale[0], uh = s_hi * gauge.scale[0];
   const S vl = z_lo * gauge.scale[2], vh = z_hi * gauge.scale[2];
-  auto norm = [&](S a, S b) { return boundNorm(a, b, p, gauge.inv_p2); };
-  const S g_lo = norm(ul, vl), g_hi = norm(uh, vh);
-  const S g_sz = norm(ul, vh), g_zs = norm(uh, vl);  // mixed corners
-  const S ts_lo = ul / g_sz, ts_hi = std::min(one, uh / g_zs);
-  const S tz_lo = vl / g_zs, tz_hi = std::min(one, vh / g_sz);
+  struct Bracket {
+    S lo, hi;  // lo ≤ ‖(a, b)‖_p ≤ hi
+  };
+  auto norm = [&](S a, S b) -> Bracket {
+    if (!quick) {
+      const S n = boundNorm(a, b, p, gauge.inv_p2);
+      return {n, n};
+    }
+    const S two = std::sqrt(a * a + b * b);
+    return p <= S(2) ? Bracket{two, a + b} : Bracket{std::max(a, b), two};
+  };
+  const S g_lo = norm(ul, vl).lo, g_hi = norm(uh, vh).hi;
+  const Bracket g_sz = norm(ul, vh), g_zs = norm(uh, vl);  // mixed corners
+  const S ts_lo = ul / g_sz.hi, ts_hi = std::min(one, uh / g_zs.lo);
+  const S tz_lo = vl / g_zs.hi, tz_hi = std::min(one, vh / g_sz.lo);
   const S a2 = gauge.scale[0] * gauge.scale[0], c2 = gauge.scale[2] * gauge.scale[2];
   const S factor = (p - one) / g_lo * (tz_hi * tz_hi * a2 + ts_hi * ts_hi * c2);
   HessianBound<S> bound;
@@ -240,9 +253,9 @@ HessianBound<S> meridianHessianBound(const NestedNorm<S>& gauge, S s_lo, S s_hi,
   } else if (ul == S(0) && vl == S(0)) {
     bound.regular = std::numeric_limits<S>::infinity();
   } else if (ul == S(0)) {  // ts ≥ (s/a)/g_hi
-    bound.crease[0] = factor * boundPow(gauge.scale[0] / g_hi, k) * boundPow(tz_lo, k);
+    bound.crease[0] = factor * boundPow(gauge.scale[0] / g_hi * tz_lo, k);
   } else if (vl == S(0)) {  // tz ≥ (z/c)/g_hi
-    bound.crease[2] = factor * boundPow(gauge.scale[2] / g_hi, k) * boundPow(ts_lo, k);
+    bound.crease[2] = factor * boundPow(gauge.scale[2] / g_hi * ts_lo, k);
   } else {
     bound.regular = factor * boundPow(ts_lo * tz_lo, k);
   }
@@ -265,17 +278,19 @@ bool hessianDiscCertified(const NestedNorm<S>& gauge, const Vector3<S>& y,
                           const Vector3<S>& nearest, const Vector3<S>& gradient_at_n, S distance,
                           S error) {
   const S reach = distance + error;
-  const HessianBound<S> bound =
-      meridianHessianBound(gauge, std::max(S(0), y[0] - reach), y[0] + reach,
-                           std::max(S(0), y[2] - reach), y[2] + reach);
+  const S s_lo = std::max(S(0), y[0] - reach), z_lo = std::max(S(0), y[2] - reach);
   const S k = gauge.p2 - S(2);
-  S m = bound.regular;
-  for (int i : {0, 2}) {
-    if (bound.crease[i] != S(0)) {
-      m += S(2) * bound.crease[i] * boundPow(nearest[i], k) / (S(2) + k);  // ∞ at N on it
+  auto holds = [&](const HessianBound<S>& bound) {
+    S m = bound.regular;
+    for (int i : {0, 2}) {
+      if (bound.crease[i] != S(0)) {
+        m += S(2) * bound.crease[i] * boundPow(nearest[i], k) / (S(2) + k);  // ∞ at N on it
+      }
     }
-  }
-  return S(1.01) * m * distance <= gradient_at_n.norm();
+    return S(1.01) * m * distance <= gradient_at_n.norm();
+  };
+  return holds(meridianHessianBound(gauge, s_lo, y[0] + reach, z_lo, y[2] + reach, true)) ||
+         holds(meridianHessianBound(gauge, s_lo, y[0] + reach, z_lo, y[2] + reach));
 }
 
 /// The same certificate for the part of the ball within `radius` of N only (docs/math.md →
