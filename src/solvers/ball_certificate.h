@@ -178,21 +178,30 @@ HessianBound<S> quickHessianNormBound(const NestedNorm<S>& gauge, const Vector3<
   return bound;
 }
 
-/// True if M·d ≤ ‖∇G(N)‖ holds (with a 1 % margin for the bound's rounding) for M the bound over
-/// the first-octant box [lo, hi], which holds every segment from N (the answer, on the surface)
-/// to a point of the ball it has to certify; the crease terms integrated along such a segment.
+/// True if M·d ≤ ‖∇G(N)‖ holds (with a 1 % margin for the bound's rounding) for M from `bound`,
+/// a bound over a box that holds every segment from N (the answer, on the surface) to a point of
+/// the ball it has to certify: its regular part plus each crease term integrated along such a
+/// segment, 2·c_i·N_i^k_i/(2 + k_i) (k: the crease exponents per axis, p − 2 of its level).
+template <typename S>
+bool hessianBoundCertifies(const HessianBound<S>& bound, const Vector3<S>& k,
+                           const Vector3<S>& nearest, const Vector3<S>& gradient_at_n, S distance) {
+  S m = bound.regular;
+  for (int i = 0; i < 3; ++i) {
+    if (bound.crease[i] == S(0)) continue;
+    m += S(2) * bound.crease[i] * boundPow(nearest[i], k[i]) / (S(2) + k[i]);  // ∞ at N on it
+  }
+  return S(1.01) * m * distance <= gradient_at_n.norm();
+}
+
+/// The certificate over the first-octant box [lo, hi] with the gauge's bounds, the quick one
+/// first.
 template <typename S>
 bool hessianBoxCertifies(const NestedNorm<S>& gauge, const Vector3<S>& lo, const Vector3<S>& hi,
                          const Vector3<S>& nearest, const Vector3<S>& gradient_at_n, S distance) {
   if (lo[0] == S(0) && lo[1] == S(0)) return false;  // the z axis: decided without pow()
+  const Vector3<S> k(gauge.p1 - S(2), gauge.p1 - S(2), gauge.p2 - S(2));
   auto holds = [&](const HessianBound<S>& bound) {
-    S m = bound.regular;
-    for (int i = 0; i < 3; ++i) {
-      if (bound.crease[i] == S(0)) continue;
-      const S k = (i < 2 ? gauge.p1 : gauge.p2) - S(2);
-      m += S(2) * bound.crease[i] * boundPow(nearest[i], k) / (S(2) + k);  // ∞ at N on it
-    }
-    return S(1.01) * m * distance <= gradient_at_n.norm();
+    return hessianBoundCertifies(bound, k, nearest, gradient_at_n, distance);
   };
   return holds(quickHessianNormBound(gauge, lo, hi)) || holds(hessianNormBound(gauge, lo, hi));
 }
@@ -279,15 +288,9 @@ bool hessianDiscCertified(const NestedNorm<S>& gauge, const Vector3<S>& y,
                           S error) {
   const S reach = distance + error;
   const S s_lo = std::max(S(0), y[0] - reach), z_lo = std::max(S(0), y[2] - reach);
-  const S k = gauge.p2 - S(2);
+  const Vector3<S> k = Vector3<S>::Constant(gauge.p2 - S(2));  // crease[1] stays 0 here
   auto holds = [&](const HessianBound<S>& bound) {
-    S m = bound.regular;
-    for (int i : {0, 2}) {
-      if (bound.crease[i] != S(0)) {
-        m += S(2) * bound.crease[i] * boundPow(nearest[i], k) / (S(2) + k);  // ∞ at N on it
-      }
-    }
-    return S(1.01) * m * distance <= gradient_at_n.norm();
+    return hessianBoundCertifies(bound, k, nearest, gradient_at_n, distance);
   };
   return holds(meridianHessianBound(gauge, s_lo, y[0] + reach, z_lo, y[2] + reach, true)) ||
          holds(meridianHessianBound(gauge, s_lo, y[0] + reach, z_lo, y[2] + reach));
