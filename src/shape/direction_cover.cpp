@@ -54,7 +54,8 @@ Cell<S> cellGeometry(int face, int i, int j, int k) {
 
 /// The cells of the grids split below the stored finest one (DirectionCover::capWithin) on the
 /// face where component 0 is 1: grid r (0 … refine − 1) is (finest·2^(r+1))², cell (i, j) at
-/// i·k + j. They do not depend on the shape: built once per process, on first use.
+/// i·k + j. They do not depend on the shape: built once per process, on first use (21,504
+/// cells, about 1 MB in double; docs/math.md → "Splitting cells on the spot").
 template <typename S, int finest, int refine>
 const std::array<std::vector<Cell<S>>, refine>& splitGrids() {
   static const std::array<std::vector<Cell<S>>, refine> grids = [] {
@@ -254,8 +255,7 @@ bool DirectionCover<S>::capWithin(const Cap& cap, const Vector3<S>& y, const Vec
   // A child is first tried with its parent's support point (any point of the shape bounds h
   // from below; a child far from n* often passes with it), and only then with its own.
   constexpr int kFinest = kCoarse << (kLevels - 1);
-  constexpr int kTabled = kRefineLevels - 1;
-  const auto& grids = splitGrids<S, kFinest, kTabled>();
+  const auto& grids = splitGrids<S, kFinest, kRefineLevels>();
   auto within = [&](auto& self, int face, int i, int j, int k, int levels,
                     const Vector3<S>& s) -> bool {
     if (levels == 0) return false;
@@ -263,8 +263,7 @@ bool DirectionCover<S>::capWithin(const Cap& cap, const Vector3<S>& y, const Vec
     for (int di = 0; di < 2; ++di) {
       for (int dj = 0; dj < 2; ++dj) {
         const int ci = 2 * i + di, cj = 2 * j + dj;
-        const Cell<S> c = r < kTabled ? onFace(grids[r][std::size_t(ci) * (2 * k) + cj], face)
-                                      : cellGeometry<S>(face, ci, cj, 2 * k);
+        const Cell<S> c = onFace(grids[r][std::size_t(ci) * (2 * k) + cj], face);
         if ((c.a - n_star).norm() + c.chord <= target || passes(c, s)) continue;
         if (*budget <= 0) return false;
         --*budget;

@@ -90,9 +90,16 @@ struct TangentBlock {
 /// (batch_kernel.cpp, tangentSteps) computes the same formulas lane by lane.
 template <typename S>
 TangentBlock<S> convexifiedTangentBlock(S b11, S b12, S b22, S scale) {
+  const S below = S(kConvexifyBelow) * scale, wanted = S(kConvexifyTo) * scale;
+  // Both eigenvalues ≥ below exactly when B − below·I is positive semidefinite: decided from
+  // its diagonal and determinant first, which is all most Newton steps need (the eigenvalues
+  // cost a square root and a division).
+  const S d11 = b11 - below, d22 = b22 - below;
+  if (d11 > S(0) && d22 > S(0) && d11 * d22 > b12 * b12 && std::isfinite(d11 * d22)) {
+    return {b11, b12, b22, false, false};
+  }
   const auto [lowest, highest, half_gap] = eigenvalues2(b11, b12, b22);  // no cancellation
   const S half_diff = (b11 - b22) / 2;
-  const S below = S(kConvexifyBelow) * scale, wanted = S(kConvexifyTo) * scale;
   if (!(lowest < below) || !std::isfinite(lowest)) return {b11, b12, b22, false, false};
   // The unit eigenvector (c, s) of the lowest eigenvalue, from the column of B − lowest·I with
   // no cancellation: (b12, −(half_diff + half_gap)) where b11 ≥ b22, else

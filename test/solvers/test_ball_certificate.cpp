@@ -69,7 +69,7 @@ const std::array<double, 5> kShapes[] = {
 TEST(HessianBall, BoundsTheHessianOverItsBox) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(0, 1);
-  int boxes = 0, crease_boxes = 0;
+  int boxes = 0, crease_boxes = 0, loose_below = 0;
   for (const auto& p : kShapes) {
     const Superellipsoid<double> shape{p[0], p[1], p[2], p[3], p[4]};
     SCOPED_TRACE(test::describe(shape));
@@ -81,13 +81,29 @@ TEST(HessianBall, BoundsTheHessianOverItsBox) {
       const double half = shape.size() * 0.2 * std::pow(u(rng), 2);
       const Vector3<double> lo = (centre.array() - half).max(0.0).matrix();
       const Vector3<double> hi = (centre.array() + half).matrix();
-      // Both bounds: the closed form over the box's corners and the quick one tried first.
-      const detail::HessianBound<double> bounds[2] = {detail::hessianNormBound(gauge, lo, hi),
-                                                      detail::quickHessianNormBound(gauge, lo, hi)};
+      // The bounds: the closed form over the box's corners, the quick one tried first and the
+      // one with bracketed norms tried next.
+      const detail::HessianBound<double> bounds[3] = {
+          detail::hessianNormBound(gauge, lo, hi), detail::quickHessianNormBound(gauge, lo, hi),
+          detail::bracketedHessianNormBound(gauge, lo, hi, true)};
       if (!std::isfinite(bounds[0].regular)) continue;  // the z axis: nothing is claimed
       ASSERT_TRUE(std::isfinite(bounds[1].regular));
       ++boxes;
       if (bounds[0].crease.maxCoeff() > 0) ++crease_boxes;
+      // The bracketed norms' other end gives a value the closed form is not below (the solver
+      // skips the closed form where that value already fails), and its upper end one the
+      // closed form is not above, term by term.
+      const detail::HessianBound<double> below =
+          detail::bracketedHessianNormBound(gauge, lo, hi, false);
+      constexpr double kRounding = 1e-12;
+      EXPECT_LE(below.regular, bounds[0].regular * (1 + kRounding));
+      EXPECT_GE(bounds[2].regular, bounds[0].regular * (1 - kRounding));
+      for (int i = 0; i < 3; ++i) {
+        EXPECT_EQ(below.crease[i] > 0, bounds[0].crease[i] > 0);
+        EXPECT_LE(below.crease[i], bounds[0].crease[i] * (1 + kRounding));
+        EXPECT_GE(bounds[2].crease[i], bounds[0].crease[i] * (1 - kRounding));
+      }
+      if (below.regular < 0.8 * bounds[0].regular) ++loose_below;
       for (int j = 0; j < 25; ++j) {
         const Vec x{lo[0] + (hi[0] - lo[0]) * u(rng), lo[1] + (hi[1] - lo[1]) * u(rng),
                     lo[2] + (hi[2] - lo[2]) * u(rng)};
@@ -104,15 +120,18 @@ TEST(HessianBall, BoundsTheHessianOverItsBox) {
             if (bound.crease[i] > 0) at_x += bound.crease[i] * std::pow(double(x[i]), k);
           }
           EXPECT_LE(double(norm), at_x * (1 + 1e-4) + 1e-9)
-              << (&bound == &bounds[0] ? "closed form" : "quick bound") << " at " << double(x[0])
-              << ", " << double(x[1]) << ", " << double(x[2]) << " in the box " << lo.transpose()
-              << " .. " << hi.transpose();
+              << (&bound == &bounds[0]   ? "closed form"
+                  : &bound == &bounds[1] ? "quick bound"
+                                         : "bracketed bound")
+              << " at " << double(x[0]) << ", " << double(x[1]) << ", " << double(x[2])
+              << " in the box " << lo.transpose() << " .. " << hi.transpose();
         }
       }
     }
   }
   EXPECT_GT(boxes, 200);        // most boxes do get a finite bound
   EXPECT_GT(crease_boxes, 40);  // among them boxes reaching a crease, bounded by its power
+  EXPECT_GT(loose_below, 0);    // the brackets are not exact: the ordering above is no tautology
 }
 
 TEST(HessianBall, CertifiesOnlyGlobalNearestPoints) {
