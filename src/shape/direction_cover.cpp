@@ -72,15 +72,15 @@ const std::array<std::vector<Cell<S>>, refine>& splitGrids() {
   return grids;
 }
 
-/// A face-0 cell moved to `face` (cellGeometry's direction: component `face` is 1, the next two
-/// cyclically are u and v).
+/// A face-0 cell's direction moved to `face` (cellGeometry's direction: component `face` is 1,
+/// the next two cyclically are u and v); its angles stay.
 template <typename S>
-Cell<S> onFace(Cell<S> cell, int face) {
-  const Vector3<S> a0 = cell.a;
-  cell.a[face] = a0[0];
-  cell.a[(face + 1) % 3] = a0[1];
-  cell.a[(face + 2) % 3] = a0[2];
-  return cell;
+Vector3<S> onFace(const Vector3<S>& a0, int face) {
+  Vector3<S> a;
+  a[face] = a0[0];
+  a[(face + 1) % 3] = a0[1];
+  a[(face + 2) % 3] = a0[2];
+  return a;
 }
 
 /// The support point of a cell's centre direction a (largest component a[face]: ∇h is
@@ -101,14 +101,14 @@ template <typename S>
 inline bool boundReaches(S along, S sy, S ss, S yy, S cos_t, S sin2_t, S need) {
   const S margin = along * cos_t - need;
   const S across_squared = std::max(S(0), ss - S(2) * sy + yy - along * along);
-  return margin >= S(0) && margin * margin >= across_squared * sin2_t;
+  return (margin >= S(0)) & (margin * margin >= across_squared * sin2_t);  // no branch
 }
 
 }  // namespace
 
 template <typename S>
 DirectionCover<S>::DirectionCover(const Superellipsoid<S>& shape)
-    : support_(NestedNorm<S>::support(shape)) {
+    : support_(NestedNorm<S>::support(shape)), size_(shape.size()) {
   struct Square {
     int face, i, j;  // cell (i, j) of the face's k × k grid
   };
@@ -148,6 +148,25 @@ DirectionCover<S>::DirectionCover(const Superellipsoid<S>& shape)
       cells.chord[p] = c.chord;
     }
   }
+  // The first split grid's support points, relative to the size and pulled inward by 2^-20:
+  // G is 1-homogeneous and grows with each coordinate in the octant, so the roundings on the
+  // way (to float and back, a few ulps of float at most) leave the point inside the shape.
+  const auto& grid = splitGrids<S, kFinestSide, kRefineLevels>()[0];
+  split_support_.resize(3 * 3 * grid.size());
+  const S inward = (S(1) - S(1.0 / (1 << 20))) / size_;
+  for (int face = 0; face < 3; ++face) {
+    for (std::size_t c = 0; c < grid.size(); ++c) {
+      const Vector3<S> s = inward * supportInside(support_, onFace(grid[c].a, face), face);
+      for (int i = 0; i < 3; ++i) split_support_[3 * (face * grid.size() + c) + i] = float(s[i]);
+    }
+  }
+}
+
+template <typename S>
+Vector3<S> DirectionCover<S>::splitSupport(int face, int i, int j) const {
+  constexpr std::size_t kSide = 2 * kFinestSide;
+  const float* stored = &split_support_[3 * ((std::size_t(face) * kSide + i) * kSide + j)];
+  return Vector3<S>(S(stored[0]), S(stored[1]), S(stored[2])) * size_;
 }
 
 template <typename S>
@@ -196,8 +215,11 @@ std::size_t DirectionCover<S>::failingFinest(const Vector3<S>& y, S need,
   std::array<std::uint16_t, kFinestCells> spare;
   std::uint16_t* next = spare.data();
   std::size_t failing_count = 0;
+  // Each cell's index is written and the count advanced only if it fails: no branch on the
+  // outcome, which the cells' order does not make predictable.
   for (std::size_t p = 0; p < levels_[0].h.size(); ++p) {
-    if (!passes(levels_[0], p)) failing[failing_count++] = static_cast<std::uint16_t>(p);
+    failing[failing_count] = static_cast<std::uint16_t>(p);
+    failing_count += !passes(levels_[0], p);
   }
   for (int level = 1; level < kLevels; ++level) {
     std::size_t next_count = 0;
@@ -205,7 +227,8 @@ std::size_t DirectionCover<S>::failingFinest(const Vector3<S>& y, S need,
     for (std::size_t k = 0; k < failing_count; ++k) {
       const std::size_t first = 4 * std::size_t(failing[k]);
       for (std::size_t p = first; p < first + 4; ++p) {
-        if (!passes(cells, p)) next[next_count++] = static_cast<std::uint16_t>(p);
+        next[next_count] = static_cast<std::uint16_t>(p);
+        next_count += !passes(cells, p);
       }
     }
     std::copy(next, next + next_count, failing);
@@ -241,20 +264,27 @@ bool DirectionCover<S>::capWithin(const Cap& cap, const Vector3<S>& y, const Vec
   if (!(std::isfinite(cap.radius) && target >= S(0))) return false;
   const S yy = y.squaredNorm();
   // Whether the bound with the point s of the shape reaches `need` over cell c.
-  auto passes = [&](const Cell<S>& c, const Vector3<S>& s) {
-    return boundReaches(c.a.dot(s) - c.a.dot(y), s.dot(y), s.squaredNorm(), yy, c.cos_t, c.sin2_t,
+  auto passes = [&](const Vector3<S>& a, const Cell<S>& c, const Vector3<S>& s) {
+    return boundReaches(a.dot(s) - a.dot(y), s.dot(y), s.squaredNorm(), yy, c.cos_t, c.sin2_t,
                         need);
+  };
+  // Whether every direction of a cell (direction a, chord c) lies within `target` of n_star:
+  // ‖a − n_star‖ + c ≤ target, compared squared (no square root; the slab's 2.01 covers the
+  // rounding, as it covers the chord's).
+  auto inside_target = [&](const Vector3<S>& a, S chord) {
+    const S room = target - chord;
+    return room >= S(0) && (a - n_star).squaredNorm() <= room * room;
   };
   // A direction a beyond `target` whose own F, with s its support point (a few ulps inside),
   // is below `need`: the claim is false, and no split can make it true.
   auto refutes = [&](const Vector3<S>& a, const Vector3<S>& s) {
-    return a.dot(s) - a.dot(y) < need && (a - n_star).norm() > target;
+    return a.dot(s) - a.dot(y) < need && (a - n_star).squaredNorm() > target * target;
   };
   // A failing cell (face, i, j) of a k × k grid that reaches beyond `target`, with its support
   // point s: split into its four children of the 2k × 2k grid, `levels` more times at most.
   // A child is first tried with its parent's support point (any point of the shape bounds h
   // from below; a child far from n* often passes with it), and only then with its own.
-  constexpr int kFinest = kCoarse << (kLevels - 1);
+  constexpr int kFinest = kFinestSide;
   const auto& grids = splitGrids<S, kFinest, kRefineLevels>();
   auto within = [&](auto& self, int face, int i, int j, int k, int levels,
                     const Vector3<S>& s) -> bool {
@@ -263,13 +293,21 @@ bool DirectionCover<S>::capWithin(const Cap& cap, const Vector3<S>& y, const Vec
     for (int di = 0; di < 2; ++di) {
       for (int dj = 0; dj < 2; ++dj) {
         const int ci = 2 * i + di, cj = 2 * j + dj;
-        const Cell<S> c = onFace(grids[r][std::size_t(ci) * (2 * k) + cj], face);
-        if ((c.a - n_star).norm() + c.chord <= target || passes(c, s)) continue;
-        if (*budget <= 0) return false;
-        --*budget;
-        const Vector3<S> own = supportInside(support_, c.a, face);
-        if (passes(c, own)) continue;
-        if (refutes(c.a, own)) return false;
+        const Cell<S>& c = grids[r][std::size_t(ci) * (2 * k) + cj];
+        const Vector3<S> a = onFace(c.a, face);
+        if (inside_target(a, c.chord) || passes(a, c, s)) continue;
+        // The first split grid's support points are stored; the deeper ones are evaluated
+        // here, within the query's budget.
+        Vector3<S> own;
+        if (r == 0) {
+          own = splitSupport(face, ci, cj);
+        } else {
+          if (*budget <= 0) return false;
+          --*budget;
+          own = supportInside(support_, a, face);
+        }
+        if (passes(a, c, own)) continue;
+        if (refutes(a, own)) return false;
         if (!self(self, face, ci, cj, 2 * k, levels - 1, own)) return false;
       }
     }

@@ -37,12 +37,14 @@ class DirectionCover {
   /// The coarsest grid per cube face, and the number of levels (each halves the cells' size).
   static constexpr int kCoarse = 4;
   static constexpr int kLevels = 3;
-  /// The finest level's number of cells: three faces of (kCoarse·2^(kLevels−1))² cells.
-  static constexpr std::size_t kFinestCells = 3 * kCoarse * kCoarse << (2 * (kLevels - 1));
+  /// The finest level's cells per face side, and its number of cells (three faces).
+  static constexpr int kFinestSide = kCoarse << (kLevels - 1);
+  static constexpr std::size_t kFinestCells = 3 * std::size_t(kFinestSide) * kFinestSide;
 
-  /// Evaluates the shape's support point in every cell's centre direction (1,008 of them; about
-  /// 0.1 ms), each pulled toward the centre by a few ulps so that it lies inside the shape
-  /// despite rounding (the bounds need points of the shape, not near it).
+  /// Evaluates the shape's support point in every cell's centre direction (1,008 of them), each
+  /// pulled toward the centre by a few ulps so that it lies inside the shape despite rounding
+  /// (the bounds need points of the shape, not near it), and in the 3,072 directions of the
+  /// first split grid (splitSupport); about 0.4 ms.
   explicit DirectionCover(const Superellipsoid<S>& shape);
 
   /// A first-octant surface point whose normal lies near the nearest point's normal for a point
@@ -65,14 +67,21 @@ class DirectionCover {
 
   /// Whether the same claim holds with the radius `target`, smaller than the cap's: the finest
   /// failing cells that reach beyond `target` from n_star are split further, up to
-  /// kRefineLevels levels below the stored ones, their support points evaluated on the spot
-  /// (none are kept). False as soon as a cell of the last level still fails beyond `target`,
-  /// a split cell's own centre is a direction beyond `target` where F < need, or `budget`
-  /// (the support points it may still evaluate, decremented) runs out.
+  /// kRefineLevels levels below the stored ones, their support points read (the first split
+  /// grid: splitSupport) or evaluated on the spot (the deeper two; none are kept). False as
+  /// soon as a cell of the last level still fails beyond `target`, a split cell's own centre is
+  /// a direction beyond `target` where F < need, or `budget` (the support points it may still
+  /// evaluate, decremented) runs out.
   bool capWithin(const Cap& cap, const Vector3<S>& y, const Vector3<S>& n_star, S need, S target,
                  int* budget) const;
   static constexpr int kRefineLevels = 3;
-  /// The support points one query may spend on capWithin, over all its answers: a check that
+
+  /// The stored support point of cell (i, j) of the first grid below the finest level (2 ×
+  /// kFinestSide cells per side) on the cube face where component `face` is 1: the point of
+  /// the shape that capWithin reads for that cell in place of an evaluation (a little inside
+  /// the surface; the constructor).
+  Vector3<S> splitSupport(int face, int i, int j) const;
+  /// The support points one query may evaluate in capWithin, over all its answers: a check that
   /// holds takes a median of 5–8 of them (docs/math.md → "Splitting cells on the spot"); one
   /// that needs many more is mostly one that fails late, where F stays within a hair of `need`
   /// over a wide set of directions (beside a flat face's sharp rim), and the query's next
@@ -100,6 +109,12 @@ class DirectionCover {
 
   std::array<Level, kLevels> levels_;
   NestedNorm<S> support_;  // the shape's support function, for the cells split on the spot
+  S size_;                 // the shape's size (its largest radius)
+  /// The support points of the first grid below the finest stored level (2·kFinestSide cells
+  /// per face side, 3,072 in all), which capWithin would otherwise evaluate most often: x, y, z
+  /// per cell, face by face, row-major, in units of size_ and pulled inward (the constructor),
+  /// in float (37 KB).
+  std::vector<float> split_support_;
 };
 
 extern template class DirectionCover<float>;

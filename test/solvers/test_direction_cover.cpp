@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <type_traits>
 
 #include "ball_checks.h"
 #include "enumerated_depth.h"
@@ -151,6 +152,57 @@ TEST(DirectionCover, CapHoldsEveryLowDirection) {
   }
   EXPECT_GT(finite_caps, queries / 2);
   EXPECT_GT(low_directions, 1000) << "the sample should hold directions inside the caps";
+}
+
+// The support points stored for the first split grid (rounded through float, relative to the
+// size): each is a point of the shape by the long-double reference gauge, the bounds' premise,
+// and within 1e-5 × size (1e-4 in float) of the support of its cell's centre direction (computed
+// here from the grid: the direction through the cell's centre on its cube face), in float and
+// double, at the ends of the radius range and at the aspect-ratio limit.
+template <typename S>
+void checkSplitSupport(const Superellipsoid<S>& shape, int* checked) {
+  SCOPED_TRACE(test::describe(shape));
+  const auto& radii = shape.radii();
+  const std::array<long double, 3> a{radii[0], radii[1], radii[2]};
+  const test::ReferenceDistance reference(a, shape.eps1(), shape.eps2());
+  const detail::DirectionCover<S>& cover = shape.directionCover();
+  constexpr int kSide = 2 * detail::DirectionCover<S>::kFinestSide;
+  // In float every support point of the cover is pulled inward by 64 ulps (7.6e-6).
+  const long double closeness = std::is_same<S, float>::value ? 1e-4L : 1e-5L;
+  for (int face = 0; face < 3; ++face) {
+    for (int i = 0; i < kSide; i += 3) {
+      for (int j = 0; j < kSide; j += 5) {
+        test::V3 n;
+        n[face] = 1;
+        n[(face + 1) % 3] = (i + 0.5L) / kSide;
+        n[(face + 2) % 3] = (j + 0.5L) / kSide;
+        n.normalize();
+        const Vector3<S> s = cover.splitSupport(face, i, j);
+        const test::V3 x = s.template cast<long double>();
+        ASSERT_LE(reference.gauge({x[0], x[1], x[2]}), 1.0L) << face << " " << i << " " << j;
+        const long double h =
+            test::superellipsoidSupport(test::V3(a[0], a[1], a[2]), shape.eps1(), shape.eps2(), n);
+        ASSERT_GE(n.dot(x), h - closeness * shape.size()) << face << " " << i << " " << j;
+        ++*checked;
+      }
+    }
+  }
+}
+
+TEST(DirectionCover, StoredSplitSupportPointsAreOnTheShape) {
+  int checked = 0;
+  for (const auto& p : kShapes) {
+    checkSplitSupport(Superellipsoid<double>{p[0], p[1], p[2], p[3], p[4]}, &checked);
+    checkSplitSupport(
+        Superellipsoid<float>{float(p[0]), float(p[1]), float(p[2]), float(p[3]), float(p[4])},
+        &checked);
+  }
+  using Range = NumericRange<double>;
+  for (double scale : {Range::kMinRadius, Range::kMaxRadius / 4}) {
+    checkSplitSupport(Superellipsoid<double>{4 * scale, 2 * scale, scale, 0.1, 1.9}, &checked);
+  }
+  checkSplitSupport(Superellipsoid<double>{Range::kMaxAspectRatio, 1, 1, 1.35, 0.3}, &checked);
+  EXPECT_GT(checked, 5000);
 }
 
 // The claim of capWithin: where it says a target radius holds (a half, a quarter and an eighth
