@@ -403,6 +403,23 @@ class LaneSolver {
     const Vec3<D> t2 = Cross(n, t1);
     const V b11 = Dot(t1, a.times(t1)), b22 = Dot(t2, a.times(t2));
     const V b12 = Dot(t1, a.times(t2));
+    const V below = hn::Mul(hn::Set(d_, T(rules::kConvexifyBelow)), scale);
+    const V c1 = Dot(t1, r), c2 = Dot(t2, r);
+    // The 2×2 solve of a tangent block.
+    auto solve = [&](V s11, V s12, V s22) {
+      const V inv_det = hn::Div(one, hn::NegMulAdd(s12, s12, hn::Mul(s11, s22)));
+      const V alpha = hn::Mul(hn::NegMulAdd(s12, c2, hn::Mul(s22, c1)), inv_det);
+      const V beta = hn::Mul(hn::NegMulAdd(s12, c1, hn::Mul(s11, c2)), inv_det);
+      return PlusTimes(Times(alpha, t1), beta, t2);
+    };
+    // Where B − below·I is positive definite on every lane (its diagonal and determinant say
+    // so, as in exact_rules::convexifiedTangentBlock), no eigenvalue is replaced: the plain step.
+    const V d11 = hn::Sub(b11, below), d22 = hn::Sub(b22, below), d_det = hn::Mul(d11, d22);
+    const M clear = hn::And(hn::And(hn::Gt(d11, zero), hn::Gt(d22, zero)),
+                            hn::And(hn::Gt(d_det, hn::Mul(b12, b12)), hn::IsFinite(d_det)));
+    if (hn::AllTrue(d_, clear)) {
+      return {solve(b11, b12, b22), Vec3<D>{zero, zero, zero}, hn::MaskFromVec(zero)};
+    }
     const V mean = hn::Mul(half, hn::Add(b11, b22)), half_diff = hn::Mul(half, hn::Sub(b11, b22));
     const V half_gap = Hypot(half_diff, b12);
     // The eigenvalue of larger magnitude without cancellation, the other as det/that one.
@@ -414,7 +431,6 @@ class LaneSolver {
         hn::IfThenElseZero(big_nonzero, hn::Div(det, hn::IfThenElse(big_nonzero, big, one)));
     const V lowest = hn::IfThenElse(mean_positive, small, big);
     const V highest = hn::IfThenElse(mean_positive, big, small);
-    const V below = hn::Mul(hn::Set(d_, T(rules::kConvexifyBelow)), scale);
     const V wanted = hn::Mul(hn::Set(d_, T(rules::kConvexifyTo)), scale);
     const M shift_it = hn::And(hn::Lt(lowest, below), hn::IsFinite(lowest));
     // The lowest eigenvalue's unit eigenvector (c, s), without cancellation.
@@ -432,14 +448,6 @@ class LaneSolver {
     const V m11 = hn::IfThenElse(shift_it, hn::MulAdd(wanted, cc, hn::Mul(high, ss)), b11);
     const V m22 = hn::IfThenElse(shift_it, hn::MulAdd(wanted, ss, hn::Mul(high, cc)), b22);
     const V m12 = hn::IfThenElse(shift_it, hn::Mul(hn::Sub(wanted, high), hn::Mul(c, s)), b12);
-    const V c1 = Dot(t1, r), c2 = Dot(t2, r);
-    // The 2×2 solve of a tangent block.
-    auto solve = [&](V s11, V s12, V s22) {
-      const V inv_det = hn::Div(one, hn::NegMulAdd(s12, s12, hn::Mul(s11, s22)));
-      const V alpha = hn::Mul(hn::NegMulAdd(s12, c2, hn::Mul(s22, c1)), inv_det);
-      const V beta = hn::Mul(hn::NegMulAdd(s12, c1, hn::Mul(s11, c2)), inv_det);
-      return PlusTimes(Times(alpha, t1), beta, t2);
-    };
     const M full_first = hn::And(shift_it, hn::Gt(lowest, zero));
     return {solve(m11, m12, m22),
             hn::AllFalse(d_, full_first) ? Vec3<D>{zero, zero, zero} : solve(b11, b12, b22),

@@ -87,7 +87,8 @@ struct TangentBlock {
 /// Convexifies the symmetric tangent block [b11, b12; b12, b22] (the rule above). The block is
 /// rebuilt from its eigenvectors, not shifted, so a replaced eigenvalue is exact even where the
 /// other is huge (near a crease). The scalar solver calls this; the SIMD kernel
-/// (batch_kernel.cpp, tangentSteps) computes the same formulas lane by lane.
+/// (batch_kernel.cpp, tangentSteps) computes the same formulas lane by lane, with the same
+/// first check (taken where every lane passes it).
 template <typename S>
 TangentBlock<S> convexifiedTangentBlock(S b11, S b12, S b22, S scale) {
   const S below = S(kConvexifyBelow) * scale, wanted = S(kConvexifyTo) * scale;
