@@ -284,8 +284,7 @@ bool DirectionCover<S>::capWithin(const Cap& cap, const Vector3<S>& y, const Vec
   // point s: split into its four children of the 2k × 2k grid, `levels` more times at most.
   // A child is first tried with its parent's support point (any point of the shape bounds h
   // from below; a child far from n* often passes with it), and only then with its own.
-  constexpr int kFinest = kFinestSide;
-  const auto& grids = splitGrids<S, kFinest, kRefineLevels>();
+  const auto& grids = splitGrids<S, kFinestSide, kRefineLevels>();
   auto within = [&](auto& self, int face, int i, int j, int k, int levels,
                     const Vector3<S>& s) -> bool {
     if (levels == 0) return false;
@@ -347,7 +346,7 @@ bool DirectionCover<S>::capWithin(const Cap& cap, const Vector3<S>& y, const Vec
     const int face = int(rest / (kCoarse * kCoarse));
     i += int(rest / kCoarse % kCoarse) << (kLevels - 1);
     j += int(rest % kCoarse) << (kLevels - 1);
-    if (!within(within, face, i, j, kFinest, kRefineLevels, s)) return false;
+    if (!within(within, face, i, j, kFinestSide, kRefineLevels, s)) return false;
   }
   return true;
 }
