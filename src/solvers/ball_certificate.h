@@ -85,14 +85,58 @@ struct NormBracket {
   S lo, hi;
 };
 
+/// A 2-argument p-norm bracketed without a power: between the 2-norm and the 1-norm (p ≤ 2) or
+/// the max norm and the 2-norm (p ≥ 2), narrowed by the constants of Hölder's inequality for two
+/// arguments, ‖v‖_p ≤ 2^(1/p − 1/2)·‖v‖_2 and ‖v‖_1 ≤ 2^(1 − 1/p)·‖v‖_p (p ≤ 2),
+/// ‖v‖_2 ≤ 2^(1/2 − 1/p)·‖v‖_p and ‖v‖_p ≤ 2^(1/p)·‖v‖_∞ (p ≥ 2): each bracket within a factor
+/// 2^0.21 ≈ 1.16 of the norm, widened by a few ulps for its rounding. One exp2 per level, then
+/// a square root per norm.
+template <typename S>
+class HolderBracket {
+ public:
+  HolderBracket(S p, S inv_p)
+      : below_two_(p <= S(2)),
+        c_(std::exp2(inv_p - S(0.5))),                 // 2^(1/p − 1/2)
+        f_(below_two_ ? c_ / kRoot2 : c_ * kRoot2) {}  // 2^(1/p − 1), 2^(1/p)
+
+  NormBracket<S> operator()(S a, S b) const {
+    const S two = hypot2(a, b);
+    const S lo = below_two_ ? std::max(two, f_ * (a + b)) : std::max(std::max(a, b), c_ * two);
+    const S hi = below_two_ ? std::min(a + b, c_ * two) : std::min(two, f_ * std::max(a, b));
+    const S widen = S(8) * std::numeric_limits<S>::epsilon();
+    return {lo * (S(1) - widen), hi * (S(1) + widen)};
+  }
+
+ private:
+  static constexpr S kRoot2 = S(1.41421356237309504880);
+  bool below_two_;
+  S c_, f_;
+};
+
+/// The norms evaluated (boundNorm): a bracket of width 0.
+template <typename S>
+auto exactNorm(S p, S inv_p) {
+  return [p, inv_p](S a, S b) {
+    const S n = boundNorm(a, b, p, inv_p);
+    return NormBracket<S>{n, n};
+  };
+}
+
 /// The bound below from its corners' norms, however they are known: `n1(a, b)` and `n2(a, b)`
 /// bracket the first and the second level's norms, and every quantity is taken at the end of
 /// its norms' brackets that makes the bound larger (`upper`) or smaller (not `upper`: then
 /// the result is no bound of ‖∇²G‖, but the exact bound is not below it). Each quantity is
 /// monotone in each norm it reads, so either way the exact bound lies between the two.
 template <typename S, typename Norm1, typename Norm2>
-HessianBound<S> hessianBoundFromCorners(const NestedNorm<S>& gauge, const Vector3<S>& ul,
-                                        const Vector3<S>& uh, bool upper, Norm1 n1, Norm2 n2) {
+HessianBound<S> hessianBoundFromCorners(const NestedNorm<S>& gauge, const Vector3<S>& lo,
+                                        const Vector3<S>& hi, bool upper, const Norm1& n1,
+                                        const Norm2& n2) {
+  const Vector3<S> ul = lo.cwiseProduct(gauge.scale), uh = hi.cwiseProduct(gauge.scale);
+  HessianBound<S> bound;
+  if (ul[0] == S(0) && ul[1] == S(0)) {  // the z axis: no finite bound
+    bound.regular = std::numeric_limits<S>::infinity();
+    return bound;
+  }
   const S p1 = gauge.p1, p2 = gauge.p2;
   const S k1 = p1 - S(2), k2 = p2 - S(2);
   // A norm where the bound wants it small (a denominator) and where it wants it large.
@@ -115,7 +159,6 @@ HessianBound<S> hessianBoundFromCorners(const NestedNorm<S>& gauge, const Vector
   const S t3_lo = ul[2] / large(g_3r), t3_hi = std::min(one, uh[2] / small(g_r3));
   const S s1 = gauge.scale[0] * gauge.scale[0], s2 = gauge.scale[1] * gauge.scale[1];
   const S s3 = gauge.scale[2] * gauge.scale[2];
-  HessianBound<S> bound;
   // The first rank-one term: factor · (t1·t2)^k1.
   const S first =
       power(tr_lo, tr_hi, p2 - one) * (p1 - one) / r_lo * (s1 * t2_hi * t2_hi + s2 * t1_hi * t1_hi);
@@ -146,53 +189,18 @@ HessianBound<S> hessianBoundFromCorners(const NestedNorm<S>& gauge, const Vector
 template <typename S>
 HessianBound<S> hessianNormBound(const NestedNorm<S>& gauge, const Vector3<S>& lo,
                                  const Vector3<S>& hi) {
-  const Vector3<S> ul = lo.cwiseProduct(gauge.scale), uh = hi.cwiseProduct(gauge.scale);
-  if (ul[0] == S(0) && ul[1] == S(0)) {
-    HessianBound<S> bound;
-    bound.regular = std::numeric_limits<S>::infinity();
-    return bound;
-  }
-  auto exact = [](S p, S inv_p) {
-    return [p, inv_p](S a, S b) {
-      const S n = boundNorm(a, b, p, inv_p);
-      return NormBracket<S>{n, n};
-    };
-  };
-  return hessianBoundFromCorners(gauge, ul, uh, true, exact(gauge.p1, gauge.inv_p1),
-                                 exact(gauge.p2, gauge.inv_p2));
+  return hessianBoundFromCorners(gauge, lo, hi, true, exactNorm(gauge.p1, gauge.inv_p1),
+                                 exactNorm(gauge.p2, gauge.inv_p2));
 }
 
-/// The same with every norm bracketed without a power: between the 2-norm and the 1-norm
-/// (p ≤ 2) or the max norm and the 2-norm (p ≥ 2), and by the constants of Hölder's inequality
-/// for two arguments, ‖v‖_p ≤ 2^(1/p − 1/2)·‖v‖_2 and ‖v‖_1 ≤ 2^(1 − 1/p)·‖v‖_p (p ≤ 2),
-/// ‖v‖_2 ≤ 2^(1/2 − 1/p)·‖v‖_p and ‖v‖_p ≤ 2^(1/p)·‖v‖_∞ (p ≥ 2): each bracket within a factor
-/// 2^0.21 ≈ 1.16 of the norm, widened by a few ulps for its rounding. `upper`: a bound of
-/// ‖∇²G‖ (looser than hessianNormBound's); not `upper`: a value hessianNormBound's is not
+/// The same with every norm bracketed without a power (HolderBracket): `upper`, a bound of
+/// ‖∇²G‖ (looser than hessianNormBound's); not `upper`, a value hessianNormBound's is not
 /// below. Two exp2 calls and 8 square roots in place of 32 calls to exp2 and log2.
 template <typename S>
 HessianBound<S> bracketedHessianNormBound(const NestedNorm<S>& gauge, const Vector3<S>& lo,
                                           const Vector3<S>& hi, bool upper) {
-  const Vector3<S> ul = lo.cwiseProduct(gauge.scale), uh = hi.cwiseProduct(gauge.scale);
-  if (ul[0] == S(0) && ul[1] == S(0)) {
-    HessianBound<S> bound;
-    bound.regular = std::numeric_limits<S>::infinity();
-    return bound;
-  }
-  const S widen = S(8) * std::numeric_limits<S>::epsilon();
-  auto bracket = [widen](S p, S inv_p) {
-    const S c = std::exp2(inv_p - S(0.5));  // 2^(1/p − 1/2)
-    const bool below_two = p <= S(2);
-    const S root2 = S(1.41421356237309504880);
-    const S f = below_two ? c / root2 : c * root2;  // 2^(1/p − 1), 2^(1/p)
-    return [=](S a, S b) {
-      const S two = hypot2(a, b);
-      const S lo = below_two ? std::max(two, f * (a + b)) : std::max(std::max(a, b), c * two);
-      const S hi = below_two ? std::min(a + b, c * two) : std::min(two, f * std::max(a, b));
-      return NormBracket<S>{lo * (S(1) - widen), hi * (S(1) + widen)};
-    };
-  };
-  return hessianBoundFromCorners(gauge, ul, uh, upper, bracket(gauge.p1, gauge.inv_p1),
-                                 bracket(gauge.p2, gauge.inv_p2));
+  return hessianBoundFromCorners(gauge, lo, hi, upper, HolderBracket<S>(gauge.p1, gauge.inv_p1),
+                                 HolderBracket<S>(gauge.p2, gauge.inv_p2));
 }
 
 /// A cheaper, looser bound of the same form (at most two powers instead of 8 norms and 5
@@ -294,31 +302,19 @@ bool hessianBallCertified(const NestedNorm<S>& gauge, const Vector3<S>& y,
 /// g(s, z) = ‖(s/a, z/c)‖_p2 (G on the plane y = 0). Its Hessian is the rank-one
 ///   ∇²g = (p2 − 1)/g·(ts·tz)^(p2−2)·(tz/a, −ts/c)(tz/a, −ts/c)ᵀ,  ts = (s/a)/g, tz = (z/c)/g,
 /// bounded over the box [lo, hi] of the (s, z) quadrant like the second level of
-/// hessianNormBound, with crease[0] for the axis s = 0 (the tip of a shape with ε2 > 1: ts → 0)
-/// and crease[2] for z = 0. No circle's curvature 1/s: that is the third dimension's, which the
-/// meridian disc does not need (hessianDiscCertified). Regular part +∞ where the box reaches
-/// both (the centre of a creased section). `quick`: each norm at the box's corners bracketed
-/// without a power, between the 2-norm and the 1-norm (p2 ≤ 2) or the max norm and the 2-norm
-/// (p2 ≥ 2), each within a factor √2 of it; tried first.
-template <typename S>
-HessianBound<S> meridianHessianBound(const NestedNorm<S>& gauge, S s_lo, S s_hi, S z_lo, S z_hi,
-                                     bool quick = false) {
+/// hessianNormBound, from its corners' norms bracketed by `norm` (each quantity at the end that
+/// makes the bound larger), with crease[0] for the axis s = 0 (the tip of a shape with
+/// ε2 > 1: ts → 0) and crease[2] for z = 0. No circle's curvature 1/s: that is the third
+/// dimension's, which the meridian disc does not need (hessianDiscCertified). Regular part +∞
+/// where the box reaches both (the centre of a creased section).
+template <typename S, typename Norm>
+HessianBound<S> meridianBoundFromCorners(const NestedNorm<S>& gauge, S s_lo, S s_hi, S z_lo, S z_hi,
+                                         Norm norm) {
   const S p = gauge.p2, k = p - S(2), one = S(1);
   const S ul = s_lo * gauge.scale[0], uh = s_hi * gauge.scale[0];
   const S vl = z_lo * gauge.scale[2], vh = z_hi * gauge.scale[2];
-  struct Bracket {
-    S lo, hi;  // lo ≤ ‖(a, b)‖_p ≤ hi
-  };
-  auto norm = [&](S a, S b) -> Bracket {
-    if (!quick) {
-      const S n = boundNorm(a, b, p, gauge.inv_p2);
-      return {n, n};
-    }
-    const S two = std::sqrt(a * a + b * b);
-    return p <= S(2) ? Bracket{two, a + b} : Bracket{std::max(a, b), two};
-  };
   const S g_lo = norm(ul, vl).lo, g_hi = norm(uh, vh).hi;
-  const Bracket g_sz = norm(ul, vh), g_zs = norm(uh, vl);  // mixed corners
+  const NormBracket<S> g_sz = norm(ul, vh), g_zs = norm(uh, vl);  // mixed corners
   const S ts_lo = ul / g_sz.hi, ts_hi = std::min(one, uh / g_zs.lo);
   const S tz_lo = vl / g_zs.hi, tz_hi = std::min(one, vh / g_sz.lo);
   const S a2 = gauge.scale[0] * gauge.scale[0], c2 = gauge.scale[2] * gauge.scale[2];
@@ -336,6 +332,18 @@ HessianBound<S> meridianHessianBound(const NestedNorm<S>& gauge, S s_lo, S s_hi,
     bound.regular = factor * boundPow(ts_lo * tz_lo, k);
   }
   return bound;
+}
+
+/// The bound above with its 4 norms evaluated, or (`quick`, tried first) bracketed without a
+/// power (HolderBracket).
+template <typename S>
+HessianBound<S> meridianHessianBound(const NestedNorm<S>& gauge, S s_lo, S s_hi, S z_lo, S z_hi,
+                                     bool quick = false) {
+  if (quick) {
+    return meridianBoundFromCorners(gauge, s_lo, s_hi, z_lo, z_hi,
+                                    HolderBracket<S>(gauge.p2, gauge.inv_p2));
+  }
+  return meridianBoundFromCorners(gauge, s_lo, s_hi, z_lo, z_hi, exactNorm(gauge.p2, gauge.inv_p2));
 }
 
 /// The Hessian-ball certificate on a surface of revolution about z, in Q's meridian plane
