@@ -102,9 +102,14 @@ int main(int argc, char** argv) {
                  "capsule, cylinder, cone, convex, triangle, halfspace, plane)")
       ->check(CLI::IsMember({"superellipsoid", "ellipsoid", "sphere", "box", "capsule", "cylinder",
                              "cone", "convex", "triangle", "halfspace", "plane"}));
+  std::string pair_answers;
+  app.add_option("--pair-answers", pair_answers,
+                 "With --pairs N: instead of timing, write our answer to each of the pairs to this "
+                 "file (hexadecimal floats; compare two builds with diff)");
   CLI11_PARSE(app, argc, argv);
 
   if (culling > 0) return runCulling(culling);
+  if (pairs > 0 && !pair_answers.empty()) return writePairAnswers(pairs, pair_answers);
   if (pairs > 0) {
     if (!out_dir.empty()) std::filesystem::create_directories(out_dir);
     return runPairs(pairs, out_dir.empty() ? std::string() : out_dir + "/pairs.csv", pair_kinds);

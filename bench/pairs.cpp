@@ -36,6 +36,11 @@ namespace {
 using namespace test;  // pair_construction.h
 using Clock = std::chrono::steady_clock;
 
+/// The partner kinds, in the order their pairs are drawn.
+const std::vector<std::string> kPairKinds = {"superellipsoid", "ellipsoid", "sphere", "box",
+                                             "capsule",        "cylinder",  "cone",   "convex",
+                                             "triangle",       "halfspace", "plane"};
+
 /// The separations of the buckets, × the superellipsoid's size (Coal's protocol: −0.1 … 1).
 constexpr double kBuckets[] = {-0.1, -0.01, 0.001, 0.01, 0.1, 1.0};
 /// Timed passes over each bucket's pairs; the time is the mean of the fastest kKept of them
@@ -241,9 +246,7 @@ struct Row {
 }  // namespace
 
 int runPairs(int per_kind, const std::string& csv, const std::vector<std::string>& only) {
-  const std::vector<std::string> kinds = {"superellipsoid", "ellipsoid", "sphere", "box",
-                                          "capsule",        "cylinder",  "cone",   "convex",
-                                          "triangle",       "halfspace", "plane"};
+  const std::vector<std::string>& kinds = kPairKinds;
   std::printf(
       "Shape pairs: the superellipsoid (ε1, ε2 in [0.1, 1.9], radii 10:1) against each kind, "
       "%d random pairs × poses per kind, built with a known separation d (test_support/"
@@ -375,6 +378,109 @@ int runPairs(int per_kind, const std::string& csv, const std::vector<std::string
     }
     std::printf("\n(every bucket: %s)\n", csv.c_str());
   }
+  return 0;
+}
+
+namespace {
+
+template <typename S>
+void writeVector(std::FILE* out, const Vector3<S>& v) {
+  std::fprintf(out, " %a %a %a", double(v[0]), double(v[1]), double(v[2]));
+}
+
+/// One query in both argument orders: distance with nearest points, then collide's contacts.
+template <typename S>
+void writeAnswer(std::FILE* out, const fcl::CollisionGeometry<S>* a, const fcl::Transform3<S>& X_A,
+                 const fcl::CollisionGeometry<S>* b, const fcl::Transform3<S>& X_B) {
+  for (int order = 0; order < 2; ++order) {
+    const fcl::CollisionGeometry<S>* o1 = order == 0 ? a : b;
+    const fcl::CollisionGeometry<S>* o2 = order == 0 ? b : a;
+    const fcl::Transform3<S>& X1 = order == 0 ? X_A : X_B;
+    const fcl::Transform3<S>& X2 = order == 0 ? X_B : X_A;
+    fcl::DistanceRequest<S> request(true, true);
+    fcl::DistanceResult<S> result;
+    const S d = fcl_superellipsoid::distance(o1, X1, o2, X2, request, result);
+    std::fprintf(out, "  d %a", double(d));
+    writeVector(out, result.nearest_points[0]);
+    writeVector(out, result.nearest_points[1]);
+    fcl::CollisionRequest<S> collide_request(4, true);
+    fcl::CollisionResult<S> collide_result;
+    fcl_superellipsoid::collide(o1, X1, o2, X2, collide_request, collide_result);
+    std::fprintf(out, "\n  contacts %zu", collide_result.numContacts());
+    for (std::size_t i = 0; i < collide_result.numContacts(); ++i) {
+      const fcl::Contact<S>& c = collide_result.getContact(i);
+      std::fprintf(out, "\n   %a", double(c.penetration_depth));
+      writeVector(out, c.pos);
+      writeVector(out, c.normal);
+    }
+    std::fprintf(out, "\n");
+  }
+}
+
+/// The case's geometry in float (the same parameters, rounded), or nullptr.
+std::shared_ptr<fcl::CollisionGeometryf> toFloat(const fcl::CollisionGeometryd* g) {
+  if (auto* x = dynamic_cast<const Superellipsoidd*>(g)) {
+    return std::make_shared<Superellipsoidf>(Vector3<float>(x->radii().cast<float>()),
+                                             float(x->eps1()), float(x->eps2()));
+  }
+  if (auto* x = dynamic_cast<const fcl::Ellipsoidd*>(g)) {
+    return std::make_shared<fcl::Ellipsoidf>(Vector3<float>(x->radii.cast<float>()));
+  }
+  if (auto* x = dynamic_cast<const fcl::Sphered*>(g)) {
+    return std::make_shared<fcl::Spheref>(float(x->radius));
+  }
+  if (auto* x = dynamic_cast<const fcl::Boxd*>(g)) {
+    return std::make_shared<fcl::Boxf>(Vector3<float>(x->side.cast<float>()));
+  }
+  if (auto* x = dynamic_cast<const fcl::Capsuled*>(g)) {
+    return std::make_shared<fcl::Capsulef>(float(x->radius), float(x->lz));
+  }
+  if (auto* x = dynamic_cast<const fcl::Cylinderd*>(g)) {
+    return std::make_shared<fcl::Cylinderf>(float(x->radius), float(x->lz));
+  }
+  if (auto* x = dynamic_cast<const fcl::Coned*>(g)) {
+    return std::make_shared<fcl::Conef>(float(x->radius), float(x->lz));
+  }
+  if (auto* x = dynamic_cast<const fcl::Halfspaced*>(g)) {
+    return std::make_shared<fcl::Halfspacef>(Vector3<float>(x->n.cast<float>()), float(x->d));
+  }
+  if (auto* x = dynamic_cast<const fcl::Planed*>(g)) {
+    return std::make_shared<fcl::Planef>(Vector3<float>(x->n.cast<float>()), float(x->d));
+  }
+  if (auto* x = dynamic_cast<const fcl::TrianglePd*>(g)) {
+    return std::make_shared<fcl::TrianglePf>(Vector3<float>(x->a.cast<float>()),
+                                             Vector3<float>(x->b.cast<float>()),
+                                             Vector3<float>(x->c.cast<float>()));
+  }
+  return nullptr;  // Convex: its double answers only
+}
+
+}  // namespace
+
+int writePairAnswers(int per_kind, const std::string& path) {
+  std::FILE* out = std::fopen(path.c_str(), "w");
+  if (out == nullptr) {
+    std::fprintf(stderr, "error: cannot write %s\n", path.c_str());
+    return 2;
+  }
+  std::mt19937 rng(2026);  // the same draws as runPairs
+  for (const std::string& kind : kPairKinds) {
+    const std::vector<Case> cases = makeCases(kind, per_kind, rng);
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      const Case& k = cases[i];
+      std::fprintf(out, "%s %zu bucket %d\n", kind.c_str(), i, k.bucket);
+      writeAnswer<double>(out, k.shape.get(), k.X_WA, k.other.get(), k.X_WB);
+      const std::shared_ptr<fcl::CollisionGeometryf> a = toFloat(k.shape.get());
+      const std::shared_ptr<fcl::CollisionGeometryf> b = toFloat(k.other.get());
+      if (a && b) {
+        std::fprintf(out, " float\n");
+        writeAnswer<float>(out, a.get(), fcl::Transform3f(k.X_WA.cast<float>()), b.get(),
+                           fcl::Transform3f(k.X_WB.cast<float>()));
+      }
+    }
+  }
+  std::fclose(out);
+  std::printf("pair answers: %s\n", path.c_str());
   return 0;
 }
 

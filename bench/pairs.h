@@ -14,6 +14,13 @@ namespace bench {
 /// (all if empty); the others' pairs are still drawn, so each kind's pairs stay the same.
 int runPairs(int per_kind, const std::string& csv, const std::vector<std::string>& only);
 
+/// Writes our answer to every pair that runPairs(per_kind, …) draws, with nothing timed: per
+/// pair, the distance and both nearest points of fcl_superellipsoid::distance (signed), and the
+/// contacts of fcl_superellipsoid::collide (up to 4, with position, normal and depth), in both
+/// argument orders, as hexadecimal floats; also the same pair in float. Two builds that give
+/// the same file give bitwise the same pair answers (docs/design.md → "Checking a refactoring").
+int writePairAnswers(int per_kind, const std::string& path);
+
 }  // namespace bench
 }  // namespace fcl_superellipsoid
 

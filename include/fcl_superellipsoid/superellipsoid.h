@@ -22,7 +22,6 @@
 
 #include <fcl/geometry/shape/shape_base.h>
 
-#include <atomic>
 #include <iosfwd>
 #include <limits>
 #include <memory>
@@ -56,60 +55,8 @@ struct NumericRange<float> {
 };
 
 namespace detail {
-/// A value computed on first use and then kept (copies keep it too). Thread-safe: threads that
-/// race on the first use compute the same value and store it.
 template <typename S>
-class CachedValue {
- public:
-  CachedValue() = default;
-  CachedValue(const CachedValue& other) : value_(other.value_.load(std::memory_order_relaxed)) {}
-  CachedValue& operator=(const CachedValue& other) {
-    value_.store(other.value_.load(std::memory_order_relaxed), std::memory_order_relaxed);
-    return *this;
-  }
-  template <typename Compute>
-  S get(const Compute& compute) const {
-    S v = value_.load(std::memory_order_relaxed);
-    if (v != v) {  // NaN: not computed yet
-      v = compute();
-      value_.store(v, std::memory_order_relaxed);
-    }
-    return v;
-  }
-
- private:
-  mutable std::atomic<S> value_{std::numeric_limits<S>::quiet_NaN()};
-};
-
-template <typename S>
-class DirectionCover;  // src/shape/direction_cover.h
-
-/// The shape's DirectionCover, built on first use and then kept (copies share it). Thread-safe:
-/// threads that race on the first use each build one and the first stored is the one kept, so a
-/// reference handed out stays valid as long as the shape.
-template <typename S>
-class CachedCover {
- public:
-  CachedCover() = default;
-  CachedCover(const CachedCover& other) : cover_(std::atomic_load(&other.cover_)) {}
-  CachedCover& operator=(const CachedCover& other) {
-    std::atomic_store(&cover_, std::atomic_load(&other.cover_));
-    return *this;
-  }
-  template <typename Build>
-  const DirectionCover<S>& get(const Build& build) const {
-    std::shared_ptr<const DirectionCover<S>> cover = std::atomic_load(&cover_);
-    if (!cover) {
-      std::shared_ptr<const DirectionCover<S>> built = build();
-      // Keeps the first one stored; `cover` receives it if another thread won.
-      if (std::atomic_compare_exchange_strong(&cover_, &cover, built)) cover = built;
-    }
-    return *cover;
-  }
-
- private:
-  mutable std::shared_ptr<const DirectionCover<S>> cover_;
-};
+class ShapeCaches;  // what the solvers keep per shape; opaque to users
 }  // namespace detail
 
 /// A superellipsoid centred at the origin of its frame, axis-aligned in that frame.
@@ -131,6 +78,10 @@ class FSE_EXPORT Superellipsoid : public fcl::ShapeBase<S> {
   /// Registers with FCL's tables on first use (see the class comment).
   Superellipsoid(S a1, S a2, S a3, S eps1, S eps2);
   Superellipsoid(const Vector3<S>& radii, S eps1, S eps2);
+  /// Copies share what the solvers computed for the shape (a moved-from shape stays usable: a
+  /// move copies).
+  Superellipsoid(const Superellipsoid&) = default;
+  Superellipsoid& operator=(const Superellipsoid&) = default;
 
   const Vector3<S>& radii() const { return radii_; }
   S eps1() const { return eps1_; }
@@ -173,14 +124,9 @@ class FSE_EXPORT Superellipsoid : public fcl::ShapeBase<S> {
   /// A lower bound on the smallest principal radius of curvature of the surface (within 10 % of
   /// it): every ball of this radius that touches the surface from inside lies inside the shape
   /// (it "rolls freely"; docs/math.md → "The rolling-ball certificate"). 0 where an exponent is
-  /// > 1: the surface then has creases of unbounded curvature. Computed on the first call (about
-  /// a millisecond; the Exact solver calls it for the first inside query), then kept.
+  /// > 1: the surface then has creases of unbounded curvature. Computed on the first call (the
+  /// Exact solver calls it for the first inside query), then kept; copies share it.
   S minRadiusOfCurvature() const;
-
-  /// Internal, the Exact solver's (src/shape/direction_cover.h): support points over a cover of
-  /// the directions, for its first start and its certificate inside the shape. Built on the
-  /// first call (about 0.1 ms, 1,008 support points), then kept.
-  const detail::DirectionCover<S>& directionCover() const;
 
   /// The options FCL queries against this shape use (fcl_integration.h: mesh vertices,
   /// spheres). Default: the Exact method with its default tolerance.
@@ -207,8 +153,8 @@ class FSE_EXPORT Superellipsoid : public fcl::ShapeBase<S> {
   S eps1_;
   S eps2_;
   DistanceOptions<S> query_options_;
-  detail::CachedValue<S> min_radius_of_curvature_;
-  detail::CachedCover<S> direction_cover_;
+  friend class detail::ShapeCaches<S>;
+  std::shared_ptr<const detail::ShapeCaches<S>> caches_;  // never null
 };
 
 template <typename S>

@@ -689,7 +689,7 @@ hn::Mask<D> CertifiedLanes(D d, const LaneProblem<hn::TFromD<D>>& problem, const
                                       lane[10][k]);
     if (!holds && cover_attempts[k] < rules::kCoverAttempts) {
       ++cover_attempts[k];
-      holds = directionCoverCertified(problem.shape->directionCover(), problem.primal, vector(0),
+      holds = directionCoverCertified(directionCover(*problem.shape), problem.primal, vector(0),
                                       vector(3), vector(12), vector(6), lane[9][k],
                                       T(rules::kCoverCapLimit), &split_budgets[k]);
     }

@@ -5,7 +5,8 @@
 //
 // FCL indexes its tables [node type of o1][node type of o2] and, for a shape–mesh pair, calls
 // them as (mesh, shape), so the mesh rows get a BV_UNKNOWN column (BV_UNKNOWN is the
-// superellipsoid's node type). A shape pair is called in the caller's order: both slots.
+// superellipsoid's node type). A shape pair is called in the caller's order: both slots. The
+// node types are the rows of pair_kinds.h.
 // Every entry checks the dynamic type (another user shape, or a BVHModel of an unknown BV
 // type, also reports BV_UNKNOWN) and answers with pairDistance / pairCollide.
 //
@@ -15,20 +16,11 @@
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 
-#include "fcl_glue/pairs/pairs.h"
+#include "fcl_glue/pair_kinds.h"
+#include "fcl_glue/pairs.h"
 
 namespace fcl_superellipsoid {
 namespace detail {
-
-constexpr fcl::NODE_TYPE kMeshNodeTypes[] = {fcl::BV_AABB,   fcl::BV_OBB,    fcl::BV_RSS,
-                                             fcl::BV_kIOS,   fcl::BV_OBBRSS, fcl::BV_KDOP16,
-                                             fcl::BV_KDOP18, fcl::BV_KDOP24};
-
-/// FCL's shapes, and BV_UNKNOWN itself (superellipsoid–superellipsoid).
-constexpr fcl::NODE_TYPE kShapeNodeTypes[] = {
-    fcl::GEOM_BOX,       fcl::GEOM_SPHERE,   fcl::GEOM_ELLIPSOID, fcl::GEOM_CAPSULE,
-    fcl::GEOM_CONE,      fcl::GEOM_CYLINDER, fcl::GEOM_CONVEX,    fcl::GEOM_PLANE,
-    fcl::GEOM_HALFSPACE, fcl::GEOM_TRIANGLE, fcl::BV_UNKNOWN};
 
 template <typename S>
 S distanceEntry(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1,
@@ -51,10 +43,13 @@ std::size_t collisionEntry(const fcl::CollisionGeometry<S>* o1, const fcl::Trans
 /// CollisionFunctionMatrix's collision_matrix).
 template <typename Matrix, typename Entry>
 void writeEntries(Matrix& matrix, Entry entry) {
-  for (fcl::NODE_TYPE mesh : kMeshNodeTypes) matrix[mesh][fcl::BV_UNKNOWN] = entry;
-  for (fcl::NODE_TYPE shape : kShapeNodeTypes) {
-    matrix[fcl::BV_UNKNOWN][shape] = entry;
-    matrix[shape][fcl::BV_UNKNOWN] = entry;
+  for (const PairKind<double>& kind : kPairKinds<double>) {
+    if (kind.form == PairForm::kMesh) {
+      matrix[kind.node_type][fcl::BV_UNKNOWN] = entry;
+    } else {
+      matrix[fcl::BV_UNKNOWN][kind.node_type] = entry;
+      matrix[kind.node_type][fcl::BV_UNKNOWN] = entry;
+    }
   }
 }
 

@@ -6,7 +6,7 @@
 // instantiates it, at the cost of FCL's other solver's tables).
 
 #include "common/invalid_argument.h"
-#include "fcl_glue/pairs/pairs.h"
+#include "fcl_glue/pairs.h"
 #include "fcl_superellipsoid/fcl_integration.h"
 
 namespace fcl_superellipsoid {

@@ -13,7 +13,7 @@
 
 #include "common/invalid_argument.h"
 #include "fcl_glue/indep_tables.h"
-#include "fcl_glue/pairs/pairs.h"
+#include "fcl_glue/pairs.h"
 #include "fcl_superellipsoid/fcl_integration.h"
 #include "fcl_superellipsoid/interpose.h"
 

@@ -8,9 +8,9 @@
 #include "common/invalid_argument.h"
 #include "fcl_glue/registration.h"
 #include "shape/curvature.h"
-#include "shape/direction_cover.h"
 #include "shape/nested_norm.h"
 #include "shape/octant.h"
+#include "shape/shape_caches.h"
 
 namespace fcl_superellipsoid {
 namespace {
@@ -68,7 +68,7 @@ Superellipsoid<S>::Superellipsoid(S a1, S a2, S a3, S eps1, S eps2)
 
 template <typename S>
 Superellipsoid<S>::Superellipsoid(const Vector3<S>& radii, S eps1, S eps2)
-    : radii_(radii), eps1_(eps1), eps2_(eps2) {
+    : radii_(radii), eps1_(eps1), eps2_(eps2), caches_(std::make_shared<detail::ShapeCaches<S>>()) {
   checkRadius("radius a1", radii[0]);
   checkRadius("radius a2", radii[1]);
   checkRadius("radius a3", radii[2]);
@@ -83,16 +83,10 @@ Superellipsoid<S>::Superellipsoid(const Vector3<S>& radii, S eps1, S eps2)
 
 template <typename S>
 S Superellipsoid<S>::minRadiusOfCurvature() const {
-  return min_radius_of_curvature_.get([this] {
+  return detail::ShapeCaches<S>::of(*this).minRadiusOfCurvature([this] {
     return static_cast<S>(
         detail::minRadiusOfCurvature(radii_.template cast<double>(), eps1_, eps2_));
   });
-}
-
-template <typename S>
-const detail::DirectionCover<S>& Superellipsoid<S>::directionCover() const {
-  return direction_cover_.get(
-      [this] { return std::make_shared<const detail::DirectionCover<S>>(*this); });
 }
 
 template <typename S>

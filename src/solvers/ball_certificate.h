@@ -46,7 +46,7 @@
 #include <cmath>
 #include <limits>
 
-#include "shape/direction_cover.h"
+#include "solvers/direction_cover.h"
 #include "shape/nested_norm.h"
 #include "shape/symmetric2.h"
 

@@ -31,7 +31,7 @@
 // shape has a local minimum on each face), so Newton also runs from the three axis
 // projections (closed form: move one coordinate until G = 1), and the nearest converged
 // answer wins; deep inside an elongated shape, also from the diagonals of the cross-sections.
-// Below G = 0.9 the direction cover's guess (shape/direction_cover.h) competes with the radial
+// Below G = 0.9 the direction cover's guess (solvers/direction_cover.h) competes with the radial
 // start for first place. The search stops at the first answer a certificate proves global
 // (rolling ball, Hessian ball, direction cover at any depth: searchInside). Each start has its own
 // share of one iteration budget. On a surface of revolution about z the whole search runs in Q's
@@ -123,10 +123,10 @@ class ExactSolver {
     }
     if (inside_ && g_y < S(rules::kCoverGauge)) {
       // Deeper inside, the first start is the nearer to Q of the radial projection and the
-      // direction cover's guess of the nearest point's normal (shape/direction_cover.h), often
+      // direction cover's guess of the nearest point's normal (solvers/direction_cover.h), often
       // the second (the radial projection heads for a box-like shape's corners). The other is
       // the second start (searchInside).
-      const Vector3<S> guess = q_.shape.directionCover().startNear(y_);
+      const Vector3<S> guess = directionCover(q_.shape).startNear(y_);
       second_start_ = guess;
       if ((guess - y_).squaredNorm() < (radial.point - y_).squaredNorm()) {
         second_start_ = radial.point;
@@ -253,7 +253,7 @@ class ExactSolver {
   bool coverCertified(const Candidate<S>& c, S distance) {
     if (cover_attempts_ == rules::kCoverAttempts) return false;
     ++cover_attempts_;
-    return directionCoverCertified(q_.shape.directionCover(), primal_, y_, c.point, c.normal,
+    return directionCoverCertified(directionCover(q_.shape), primal_, y_, c.point, c.normal,
                                    c.gradient, distance, S(rules::kCoverCapLimit), &split_budget_);
   }
 

@@ -15,7 +15,7 @@
 
 #include "fcl_superellipsoid/point_distance.h"
 #include "fcl_superellipsoid/superellipsoid.h"
-#include "shape/direction_cover.h"
+#include "solvers/direction_cover.h"
 #include "test_helpers.h"
 
 namespace fcl_superellipsoid {
@@ -431,7 +431,7 @@ TYPED_TEST(SuperellipsoidTest, RollingRadiusIsComputedOnceForAllThreads) {
   EXPECT_EQ(copy.minRadiusOfCurvature(), expected);
 }
 
-// The direction cover (the Exact solver's, src/shape/direction_cover.h) is built on first use
+// The direction cover (the Exact solver's, src/solvers/direction_cover.h) is built on first use
 // and kept: threads that ask at once all get the one stored first, threads that copy the shape
 // meanwhile get a working shape, and a copy made afterwards shares it (run under
 // ThreadSanitizer by the TSan build).
@@ -443,19 +443,19 @@ TYPED_TEST(SuperellipsoidTest, DirectionCoverIsBuiltOnceForAllThreads) {
   std::vector<Vector3<S>> copied_start(2);
   std::vector<std::thread> threads;
   for (std::size_t t = 0; t < seen.size(); ++t) {
-    threads.emplace_back([&shape, &seen, t] { seen[t] = &shape.directionCover(); });
+    threads.emplace_back([&shape, &seen, t] { seen[t] = &detail::directionCover(shape); });
   }
   for (std::size_t t = 0; t < copied_start.size(); ++t) {
     threads.emplace_back([&shape, &copied_start, &y, t] {
       const Superellipsoid<S> copy = shape;
-      copied_start[t] = copy.directionCover().startNear(y);
+      copied_start[t] = detail::directionCover(copy).startNear(y);
     });
   }
   for (std::thread& t : threads) t.join();
   for (const void* cover : seen) EXPECT_EQ(cover, seen[0]);
   const Superellipsoid<S> copy = shape;
-  EXPECT_EQ(static_cast<const void*>(&copy.directionCover()), seen[0]);
-  const Vector3<S> start = shape.directionCover().startNear(y);
+  EXPECT_EQ(static_cast<const void*>(&detail::directionCover(copy)), seen[0]);
+  const Vector3<S> start = detail::directionCover(shape).startNear(y);
   for (const Vector3<S>& s : copied_start) EXPECT_EQ(s, start);
 }
 

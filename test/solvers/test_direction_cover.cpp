@@ -1,4 +1,4 @@
-// The direction cover's certificate of inside answers (src/shape/direction_cover.h and
+// The direction cover's certificate of inside answers (src/solvers/direction_cover.h and
 // directionCoverCertified in src/solvers/ball_certificate.h, docs/math.md → "The direction
 // cover"): its cap against the support function evaluated directly in long double over a dense
 // lattice of directions, the whole certificate against the long-double reference on stationary
@@ -15,9 +15,9 @@
 #include "enumerated_depth.h"
 #include "fcl_superellipsoid/point_distance.h"
 #include "reference_distance.h"
-#include "shape/direction_cover.h"
 #include "shape/nested_norm.h"
 #include "solvers/ball_certificate.h"
+#include "solvers/direction_cover.h"
 #include "solvers/exact_rules.h"
 #include "test_helpers.h"
 
@@ -91,7 +91,7 @@ bool certifies(const Superellipsoid<double>& shape, const detail::NestedNorm<dou
                const Vector3<double>& y, const Vector3<double>& n_point,
                const Vector3<double>& normal, const Vector3<double>& gradient, double d) {
   int split_budget = detail::DirectionCover<double>::kSplitSupportPoints;
-  return detail::directionCoverCertified(shape.directionCover(), gauge, y, n_point, normal,
+  return detail::directionCoverCertified(detail::directionCover(shape), gauge, y, n_point, normal,
                                          gradient, d, detail::exact_rules::kCoverCapLimit,
                                          &split_budget);
 }
@@ -134,7 +134,7 @@ TEST(DirectionCover, CapHoldsEveryLowDirection) {
       ASSERT_NEAR(double(test::superellipsoidSupport({p[0], p[1], p[2]}, p[3], p[4], n)),
                   double(n.dot(x.cast<long double>())), 1e-12 * shape.size());
     }
-    const detail::DirectionCover<double>& cover = shape.directionCover();
+    const detail::DirectionCover<double>& cover = detail::directionCover(shape);
     for (int k = 0; k < 12; ++k) {
       const InsideDraw draw = drawInside(shape, rng);
       if (!draw.inside) continue;
@@ -165,7 +165,7 @@ void checkSplitSupport(const Superellipsoid<S>& shape, int* checked) {
   const auto& radii = shape.radii();
   const std::array<long double, 3> a{radii[0], radii[1], radii[2]};
   const test::ReferenceDistance reference(a, shape.eps1(), shape.eps2());
-  const detail::DirectionCover<S>& cover = shape.directionCover();
+  const detail::DirectionCover<S>& cover = detail::directionCover(shape);
   constexpr int kSide = 2 * detail::DirectionCover<S>::kFinestSide;
   // In float every support point of the cover is pulled inward by 64 ulps (7.6e-6).
   const long double closeness = std::is_same<S, float>::value ? 1e-4L : 1e-5L;
@@ -218,7 +218,7 @@ TEST(DirectionCover, RefinedCapHoldsEveryLowDirection) {
     const Superellipsoid<double> shape{p[0], p[1], p[2], p[3], p[4]};
     SCOPED_TRACE(test::describe(shape));
     const std::vector<long double> h_of = supportAt(p, directions);
-    const detail::DirectionCover<double>& cover = shape.directionCover();
+    const detail::DirectionCover<double>& cover = detail::directionCover(shape);
     for (int k = 0; k < 16; ++k) {
       const InsideDraw draw = drawInside(shape, rng);
       if (!draw.inside) continue;
@@ -347,7 +347,7 @@ TEST(DirectionCover, StartIsASurfacePoint) {
     for (int k = 0; k < 20; ++k) {
       const Vector3<double> y =
           shape.radii().cwiseProduct(Vector3<double>(u(rng), u(rng), u(rng))).cwiseAbs();
-      const Vector3<double> s = shape.directionCover().startNear(y);
+      const Vector3<double> s = detail::directionCover(shape).startNear(y);
       ASSERT_TRUE((s.array() >= 0).all()) << s.transpose();
       EXPECT_NEAR(double(reference.gauge({s[0], s[1], s[2]})), 1.0, 1e-13);
     }

@@ -171,7 +171,7 @@ TYPED_TEST(ThreadSafetyTest, ManyThreadsQueryTheSameFclObjects) {
 }
 
 // A box's and a triangle's faces and edges are built once per process and shared by every
-// query (src/fcl_glue/pairs/polytope_pair.cpp, sharedTopology). Under ctest each test runs in
+// query (src/narrowphase/polytope_pair.cpp, sharedTopology). Under ctest each test runs in
 // its own process, so the threads here race on building them: every thread's answers (distance,
 // nearest points, contacts; separated and overlapping) equal those of the same queries made
 // after, on one thread.

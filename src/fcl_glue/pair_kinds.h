@@ -1,0 +1,184 @@
+#ifndef FCL_SUPERELLIPSOID_SRC_FCL_GLUE_PAIR_KINDS_H
+#define FCL_SUPERELLIPSOID_SRC_FCL_GLUE_PAIR_KINDS_H
+
+// Internal: every kind of geometry the superellipsoid is paired with, one row each: the other
+// geometry's node type, FCL's class of it, the check of its parameters and the narrowphase
+// function that answers the pair (src/narrowphase/). The dispatcher (pairs.cpp) and FCL's
+// tables (fcl_tables.h, and through them the front end, the broadphase callbacks and the
+// interposed plain calls) read this table and nothing else, so adding a pair kind is one row
+// here and one file in src/narrowphase/ (docs/design.md → "Adding a pair").
+
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cone.h>
+#include <fcl/geometry/shape/convex.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/ellipsoid.h>
+#include <fcl/geometry/shape/halfspace.h>
+#include <fcl/geometry/shape/plane.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/geometry/shape/triangle_p.h>
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+
+#include "common/invalid_argument.h"
+#include "fcl_glue/pair.h"
+#include "narrowphase/capsule_pair.h"
+#include "narrowphase/halfspace_pair.h"
+#include "narrowphase/polytope_pair.h"
+#include "narrowphase/round_pair.h"
+#include "narrowphase/smooth_pair.h"
+#include "narrowphase/sphere_pair.h"
+
+namespace fcl_superellipsoid {
+namespace detail {
+
+/// How a pair kind answers: one hit (a shape), or one contact per penetrating vertex (a
+/// BVHModel: mesh_pair.h, which writes FCL's results itself).
+enum class PairForm { kShape, kMesh };
+
+/// A shape kind's answer: std::nullopt where the other geometry is not of the row's class (a
+/// user's geometry may report any node type). `where` names the query in a refusal.
+template <typename S>
+using ShapeAnswer = std::optional<PairHit<S>> (*)(const Pair<S>& pair, const char* where);
+
+/// One pair kind.
+template <typename S>
+struct PairKind {
+  fcl::NODE_TYPE node_type;
+  PairForm form;
+  ShapeAnswer<S> answer;  // kShape only
+};
+
+// --- The checks of the other geometry's parameters ----------------------------------------
+// Parameters that are not finite, a negative length, or a length or coordinate beyond a
+// sixteenth of the largest finite value are refused (its features' coordinates, sums of a few
+// of them, must stay finite; docs/hardening.md → "Bad input").
+
+template <typename S>
+void checkLength(const char* where, const char* name, S v) {
+  if (!(v >= S(0) && v <= std::numeric_limits<S>::max() / 16)) {
+    throwInvalidArgument(
+        where, std::string("the other shape's ") + name + " must be finite, >= 0 and <= max/16", v);
+  }
+}
+
+template <typename S>
+void checkPoint(const char* where, const char* name, const Vector3<S>& p) {
+  if (!p.allFinite() || !(p.cwiseAbs().maxCoeff() <= std::numeric_limits<S>::max() / 16)) {
+    throwInvalidArgument(
+        where,
+        std::string("the other shape's ") + name + " must be finite, each |coordinate| <= max/16",
+        p);
+  }
+}
+
+template <typename S>
+void checkNothing(const char*, const Superellipsoid<S>&) {}  // checked when it was constructed
+template <typename S>
+void checkSphere(const char* where, const fcl::Sphere<S>& x) {
+  checkLength(where, "radius", x.radius);
+}
+template <typename S>
+void checkEllipsoid(const char* where, const fcl::Ellipsoid<S>& x) {
+  for (int i = 0; i < 3; ++i) checkLength(where, "radii", x.radii[i]);
+}
+template <typename S>
+void checkBox(const char* where, const fcl::Box<S>& x) {
+  for (int i = 0; i < 3; ++i) checkLength(where, "side", x.side[i]);
+}
+/// A capsule, cylinder or cone.
+template <typename S, typename Round>
+void checkRound(const char* where, const Round& x) {
+  checkLength(where, "radius", x.radius);
+  checkLength(where, "lz", x.lz);
+}
+/// A halfspace or plane.
+template <typename S, typename Plane>
+void checkPlane(const char* where, const Plane& x) {
+  checkPoint(where, "normal n", x.n);
+  checkLength(where, "|d|", std::abs(x.d));
+}
+template <typename S>
+void checkConvex(const char* where, const fcl::Convex<S>& x) {
+  for (const Vector3<S>& v : x.getVertices()) checkPoint(where, "vertex", v);
+}
+template <typename S>
+void checkTriangle(const char* where, const fcl::TriangleP<S>& x) {
+  checkPoint(where, "vertex a", x.a);
+  checkPoint(where, "vertex b", x.b);
+  checkPoint(where, "vertex c", x.c);
+}
+
+/// The answer of a shape kind: the other geometry as FCL's class G, checked by Check, answered
+/// by the narrowphase function Hit.
+template <typename S, typename G, void (*Check)(const char*, const G&),
+          std::optional<PairHit<S>> (*Hit)(const ShapePair<S>&, const G&)>
+std::optional<PairHit<S>> shapeAnswer(const Pair<S>& pair, const char* where) {
+  const G* other = geometryAs<G>(pair.other);
+  if (other == nullptr) return std::nullopt;
+  Check(where, *other);
+  return Hit(pair, *other);
+}
+
+// --- The table ------------------------------------------------------------------------------
+
+template <typename S>
+inline constexpr PairKind<S> kPairKinds[] = {
+    // Newton on the sphere of directions (smooth_pair.h).
+    {fcl::BV_UNKNOWN, PairForm::kShape,
+     &shapeAnswer<S, Superellipsoid<S>, &checkNothing<S>, &superellipsoidHit<S>>},
+    {fcl::GEOM_ELLIPSOID, PairForm::kShape,
+     &shapeAnswer<S, fcl::Ellipsoid<S>, &checkEllipsoid<S>, &ellipsoidHit<S>>},
+    // The point solver (sphere_pair.h); one support point (halfspace_pair.h).
+    {fcl::GEOM_SPHERE, PairForm::kShape,
+     &shapeAnswer<S, fcl::Sphere<S>, &checkSphere<S>, &sphereHit<S>>},
+    {fcl::GEOM_HALFSPACE, PairForm::kShape,
+     &shapeAnswer<S, fcl::Halfspace<S>, &checkPlane<S, fcl::Halfspace<S>>, &halfspaceHit<S>>},
+    {fcl::GEOM_PLANE, PairForm::kShape,
+     &shapeAnswer<S, fcl::Plane<S>, &checkPlane<S, fcl::Plane<S>>, &planeHit<S>>},
+    // Features (capsule_pair.h, polytope_pair.h, round_pair.h).
+    {fcl::GEOM_CAPSULE, PairForm::kShape,
+     &shapeAnswer<S, fcl::Capsule<S>, &checkRound<S, fcl::Capsule<S>>, &capsuleHit<S>>},
+    {fcl::GEOM_BOX, PairForm::kShape, &shapeAnswer<S, fcl::Box<S>, &checkBox<S>, &boxHit<S>>},
+    {fcl::GEOM_CONVEX, PairForm::kShape,
+     &shapeAnswer<S, fcl::Convex<S>, &checkConvex<S>, &convexHit<S>>},
+    {fcl::GEOM_TRIANGLE, PairForm::kShape,
+     &shapeAnswer<S, fcl::TriangleP<S>, &checkTriangle<S>, &triangleHit<S>>},
+    {fcl::GEOM_CYLINDER, PairForm::kShape,
+     &shapeAnswer<S, fcl::Cylinder<S>, &checkRound<S, fcl::Cylinder<S>>, &cylinderHit<S>>},
+    {fcl::GEOM_CONE, PairForm::kShape,
+     &shapeAnswer<S, fcl::Cone<S>, &checkRound<S, fcl::Cone<S>>, &coneHit<S>>},
+    // FCL's BVH models of the eight BV types: their vertices (mesh_pair.h).
+    {fcl::BV_AABB, PairForm::kMesh, nullptr},
+    {fcl::BV_OBB, PairForm::kMesh, nullptr},
+    {fcl::BV_RSS, PairForm::kMesh, nullptr},
+    {fcl::BV_kIOS, PairForm::kMesh, nullptr},
+    {fcl::BV_OBBRSS, PairForm::kMesh, nullptr},
+    {fcl::BV_KDOP16, PairForm::kMesh, nullptr},
+    {fcl::BV_KDOP18, PairForm::kMesh, nullptr},
+    {fcl::BV_KDOP24, PairForm::kMesh, nullptr},
+};
+
+/// The row of node type t, or nullptr where the superellipsoid has no pair with it.
+template <typename S>
+const PairKind<S>* findPairKind(fcl::NODE_TYPE t) {
+  static constexpr std::array<int, fcl::NODE_COUNT> kRowOf = [] {
+    std::array<int, fcl::NODE_COUNT> row{};
+    for (int& r : row) r = -1;
+    int k = 0;
+    for (const PairKind<S>& kind : kPairKinds<S>) row[kind.node_type] = k++;
+    return row;
+  }();
+  if (t < 0 || t >= fcl::NODE_COUNT || kRowOf[t] < 0) return nullptr;
+  return &kPairKinds<S>[kRowOf[t]];
+}
+
+}  // namespace detail
+}  // namespace fcl_superellipsoid
+
+#endif  // FCL_SUPERELLIPSOID_SRC_FCL_GLUE_PAIR_KINDS_H

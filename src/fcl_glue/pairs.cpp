@@ -1,0 +1,99 @@
+// The dispatcher: a superellipsoid pair goes to the row of pair_kinds.h that the other
+// geometry's node type names: a mesh or point cloud (many contacts, mesh_pair.h), or a shape
+// (one hit, written here into FCL's results); a pair that none recognises gets FCL's "not
+// supported" warning.
+
+#include "fcl_glue/pairs.h"
+
+#include <iostream>
+#include <limits>
+
+#include "common/coordinate_range.h"
+#include "fcl_glue/mesh_pair.h"
+#include "fcl_glue/pair.h"
+#include "fcl_glue/pair_kinds.h"
+
+namespace fcl_superellipsoid {
+namespace detail {
+namespace {
+
+void warnUnsupported(const char* what, int node_type1, int node_type2) {
+  std::cerr << "Warning: " << what << " function between node type " << node_type1
+            << " and node type " << node_type2 << " is not supported\n";
+}
+
+/// The pair's row of pair_kinds.h, or nullptr.
+template <typename S>
+const PairKind<S>* kindOf(const Pair<S>& pair) {
+  return pair.shape != nullptr ? findPairKind<S>(pair.other_type) : nullptr;
+}
+
+}  // namespace
+
+template <typename S>
+bool involvesSuperellipsoid(const fcl::CollisionGeometry<S>* o1,
+                            const fcl::CollisionGeometry<S>* o2) {
+  return asSuperellipsoid(o1) != nullptr || asSuperellipsoid(o2) != nullptr;
+}
+
+template <typename S>
+S pairDistance(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1,
+               const fcl::CollisionGeometry<S>* o2, const fcl::Transform3<S>& tf2,
+               const fcl::DistanceRequest<S>& request, fcl::DistanceResult<S>& result) {
+  checkPose("superellipsoid distance", "of o1", tf1);
+  checkPose("superellipsoid distance", "of o2", tf2);
+  const Pair<S> pair = makePair(o1, tf1, o2, tf2);
+  if (const PairKind<S>* kind = kindOf(pair)) {
+    if (kind->form == PairForm::kMesh) {
+      if (const std::optional<S> answer = meshDistance(pair, request, result)) return *answer;
+    } else if (const std::optional<PairHit<S>> hit =
+                   kind->answer(pair, "superellipsoid distance")) {
+      updateDistance(pair, *hit, request, result);
+      return result.min_distance;
+    }
+  }
+  warnUnsupported("distance", o1->getNodeType(), o2->getNodeType());
+  return std::numeric_limits<S>::max();
+}
+
+template <typename S>
+std::size_t pairCollide(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1,
+                        const fcl::CollisionGeometry<S>* o2, const fcl::Transform3<S>& tf2,
+                        const fcl::CollisionRequest<S>& request, fcl::CollisionResult<S>& result) {
+  checkPose("superellipsoid collide", "of o1", tf1);
+  checkPose("superellipsoid collide", "of o2", tf2);
+  const Pair<S> pair = makePair(o1, tf1, o2, tf2);
+  if (pair.shape != nullptr && request.num_max_contacts <= result.numContacts()) {
+    return result.numContacts();  // no room left
+  }
+  if (const PairKind<S>* kind = kindOf(pair)) {
+    const std::size_t room = request.num_max_contacts - result.numContacts();
+    if (kind->form == PairForm::kMesh) {
+      if (meshCollide(pair, request, room, result)) return result.numContacts();
+    } else if (const std::optional<PairHit<S>> hit = kind->answer(pair, "superellipsoid collide")) {
+      // One contact where they overlap, halfway between the two surfaces.
+      if (hit->distance < S(0)) {
+        addContact(pair, *hit, Vector3<S>(S(0.5) * (hit->on_shape + hit->on_other)),
+                   request.enable_contact, result);
+      }
+      return result.numContacts();
+    }
+  }
+  warnUnsupported("collision", o1->getNodeType(), o2->getNodeType());
+  return 0;
+}
+
+#define FSE_INSTANTIATE_PAIRS(S)                                                                \
+  template bool involvesSuperellipsoid(const fcl::CollisionGeometry<S>*,                        \
+                                       const fcl::CollisionGeometry<S>*);                       \
+  template S pairDistance(const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&,          \
+                          const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&,          \
+                          const fcl::DistanceRequest<S>&, fcl::DistanceResult<S>&);             \
+  template std::size_t pairCollide(const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&, \
+                                   const fcl::CollisionGeometry<S>*, const fcl::Transform3<S>&, \
+                                   const fcl::CollisionRequest<S>&, fcl::CollisionResult<S>&);
+FSE_INSTANTIATE_PAIRS(float)
+FSE_INSTANTIATE_PAIRS(double)
+
+}  // namespace detail
+}  // namespace fcl_superellipsoid

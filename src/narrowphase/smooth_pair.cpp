@@ -1,0 +1,106 @@
+#include "narrowphase/smooth_pair.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "narrowphase/rolling_certificate.h"
+#include "narrowphase/sphere_newton.h"
+
+namespace fcl_superellipsoid {
+namespace detail {
+namespace {
+
+/// How many of the start directions are refined when the first run does not find the shapes
+/// separated.
+constexpr int kRefinedStarts = 4;
+/// Fibonacci-sphere directions added to the starts when the shapes overlap.
+constexpr int kSphereStarts = 32;
+
+/// Directions spread evenly over the sphere (a Fibonacci lattice).
+template <typename S>
+Vector3<S> sphereDirection(int i, int n) {
+  const double golden = 2.39996322972865332;  // π(3 − √5)
+  const double z = 1.0 - (2.0 * i + 1.0) / n;
+  const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+  return Vector3<S>(S(r * std::cos(golden * i)), S(r * std::sin(golden * i)), S(z));
+}
+
+}  // namespace
+
+/// The answer for A and B; where they overlap, `rolling_radius()` gives ρ_A + ρ_B and
+/// `tolerance` bounds the tangential gradient for the certificate (rolling_certificate.h).
+template <typename S, typename RollingRadius>
+SmoothPairAnswer<S> solveSmoothPair(const SupportMap<S>& A, const SupportMap<S>& B,
+                                    const RollingRadius& rolling_radius, S tolerance) {
+  const Vector3<S> centres = B.centre() - A.centre();
+  const Vector3<S> first = centres.squaredNorm() > S(0) ? centres : Vector3<S>::UnitZ();
+  Probe<S> best = localMinimum(A, B, first);
+  // Not found separated: overlapping (or touching). The first run's minimum is the depth where
+  // the rolling balls certify it; otherwise F may have several local minima, and Newton runs
+  // from the lowest of: both frames' axes, a lattice over the sphere.
+  if (!(best.f < S(0)) && !rollingCertified(best, rolling_radius(), tolerance)) {
+    std::vector<Probe<S>> starts;
+    auto add = [&](const Vector3<S>& v) { starts.push_back(probe(A, B, v)); };
+    for (int i = 0; i < 3; ++i) {
+      for (S sign : {S(1), S(-1)}) {
+        add(sign * A.pose().linear().col(i));
+        add(sign * B.pose().linear().col(i));
+      }
+    }
+    for (int i = 0; i < kSphereStarts; ++i) add(sphereDirection<S>(i, kSphereStarts));
+    const int refined = std::min<int>(kRefinedStarts, static_cast<int>(starts.size()));
+    std::partial_sort(starts.begin(), starts.begin() + refined, starts.end(),
+                      [](const Probe<S>& x, const Probe<S>& y) { return x.f < y.f; });
+    for (int k = 0; k < refined; ++k) {
+      const Probe<S> p = localMinimum(A, B, starts[k].v);
+      if (p.f < best.f) best = p;
+    }
+  }
+  SmoothPairAnswer<S> out;
+  out.distance = -best.f;
+  out.on_a = best.a;
+  out.on_b = best.b;
+  out.normal = best.v;
+  return out;
+}
+
+namespace {
+
+/// The pair of smooth shapes, `other` of size `other_size`.
+template <typename S, typename Other>
+std::optional<PairHit<S>> smoothHit(const ShapePair<S>& pair, const Other& other, S other_size) {
+  const SupportMap<S> shape(*pair.shape, *pair.X_WS);
+  // The rolling radii are asked for only where the first run finds an overlap: a
+  // superellipsoid's is computed on its first use.
+  const S tolerance = S(kRollingGradientTolerance) * std::max(pair.shape->size(), other_size);
+  const SmoothPairAnswer<S> r = solveSmoothPair(
+      shape, SupportMap<S>(other, *pair.X_WO),
+      [&] { return rollingRadius(*pair.shape) + rollingRadius(other); }, tolerance);
+  return PairHit<S>{r.distance, r.on_b, r.on_a, r.normal, -1};
+}
+
+}  // namespace
+
+template <typename S>
+std::optional<PairHit<S>> superellipsoidHit(const ShapePair<S>& pair,
+                                            const Superellipsoid<S>& other) {
+  return smoothHit(pair, other, other.size());
+}
+
+template <typename S>
+std::optional<PairHit<S>> ellipsoidHit(const ShapePair<S>& pair, const fcl::Ellipsoid<S>& other) {
+  return smoothHit(pair, other, other.radii.maxCoeff());
+}
+
+#define FSE_INSTANTIATE_SMOOTH_HIT(S)                                             \
+  template std::optional<PairHit<S>> superellipsoidHit(const ShapePair<S>&,       \
+                                                       const Superellipsoid<S>&); \
+  template std::optional<PairHit<S>> ellipsoidHit(const ShapePair<S>&, const fcl::Ellipsoid<S>&);
+FSE_INSTANTIATE_SMOOTH_HIT(float)
+FSE_INSTANTIATE_SMOOTH_HIT(double)
+
+}  // namespace detail
+}  // namespace fcl_superellipsoid
