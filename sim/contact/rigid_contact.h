@@ -26,9 +26,9 @@
 #include <memory>
 #include <vector>
 
-#include "physics/rigid_body.h"
-#include "physics/static_mesh.h"
-#include "scene/scene.h"
+#include "model/rigid_body.h"
+#include "model/scene.h"
+#include "model/static_mesh.h"
 
 namespace fse_sim {
 

@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "contact/rigid_contact.h"
-#include "physics/rigid_body.h"
-#include "physics/static_mesh.h"
+#include "model/rigid_body.h"
+#include "model/static_mesh.h"
 
 namespace fse_sim {
 

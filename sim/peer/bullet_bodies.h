@@ -15,9 +15,9 @@
 
 #include "contact/rigid_contact.h"
 #include "physics/phases.h"
-#include "physics/rigid_body.h"
-#include "physics/static_mesh.h"
-#include "scene/scene.h"
+#include "model/rigid_body.h"
+#include "model/static_mesh.h"
+#include "model/scene.h"
 
 namespace fse_sim {
 

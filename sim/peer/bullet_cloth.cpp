@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "bt_superellipsoid_shape.h"
-#include "contact/contact_model.h"
+#include "contact/cloth_contact.h"
 
 namespace fse_sim {
 

@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 #include <memory>
 
-#include "scene/scene.h"
+#include "model/scene.h"
 
 namespace fse_sim {
 

@@ -6,7 +6,8 @@
 namespace fse_sim {
 
 ClothSimulation::ClothSimulation(const Scene& scene, const SimulationOptions& options)
-    : scene_(scene),
+    : Simulation(scene.time),
+      scene_(scene),
       mesh_(makeClothMesh(scene.cloth)),
       x_(mesh_.rest_positions),
       v_(3, mesh_.vertexCount()),
@@ -37,45 +38,29 @@ ClothSimulation::ClothSimulation(const Scene& scene, const SimulationOptions& op
                                  : std::make_unique<tbb::task_arena>();
   }
 
-  phases_.push_back(Phase::kIntegration);
-  if (position_pass_) phases_.push_back(Phase::kPositionConstraints);
-  if (contacts_) phases_.push_back(Phase::kContactConstraints);
-  phases_.push_back(Phase::kVelocityUpdate);
-  if (velocity_pass_) phases_.push_back(Phase::kVelocityConstraints);
-  if (contacts_) phases_.push_back(Phase::kCollisionDetection);
-  phases_.push_back(Phase::kTotal);
+  declarePhases(position_pass_, contacts_ != nullptr, velocity_pass_, contacts_ != nullptr);
 }
 
-void ClothSimulation::step() {
-  times_.fill(0);
-  {
-    ScopedPhase total(times_, Phase::kTotal);
-    const double h = scene_.time.step;
-    if (contacts_) {
-      ScopedPhase timer(times_, Phase::kCollisionDetection);
-      double max_speed2 = 0;
-      for (Eigen::Index i = 0; i < v_.cols(); ++i) {
-        max_speed2 = std::max(max_speed2, v_.col(i).squaredNorm());
-      }
-      contacts_->detect(x_, std::sqrt(max_speed2), gravity_.norm(), h);
-    }
-    const int n = scene_.time.substeps;
-    const auto substeps = [&] {
-      for (int s = 0; s < n; ++s) substep(h / n);
-    };
-    if (arena_) {
-      arena_->execute(substeps);
-    } else {
-      substeps();
-    }
+void ClothSimulation::detect(double h) {
+  double max_speed2 = 0;
+  for (Eigen::Index i = 0; i < v_.cols(); ++i) {
+    max_speed2 = std::max(max_speed2, v_.col(i).squaredNorm());
   }
-  time_ = scene_.time.step * double(++steps_);
+  contacts_->detect(x_, std::sqrt(max_speed2), gravity_.norm(), h);
+}
+
+void ClothSimulation::runSubsteps(int n, double h) {
+  if (arena_) {
+    arena_->execute([&] { Simulation::runSubsteps(n, h); });
+  } else {
+    Simulation::runSubsteps(n, h);
+  }
 }
 
 void ClothSimulation::substep(double h) {
   const Eigen::Index n = x_.cols();
   {
-    ScopedPhase timer(times_, Phase::kIntegration);
+    const ScopedPhase timer = timed(Phase::kIntegration);
     x_start_ = x_;
     if (scene_.gravity) {
       const Eigen::Vector3d dv = h * gravity_;
@@ -86,7 +71,7 @@ void ClothSimulation::substep(double h) {
     x_ += h * v_;  // fixed vertices have v = 0
   }
   if (position_pass_) {
-    ScopedPhase timer(times_, Phase::kPositionConstraints);
+    const ScopedPhase timer = timed(Phase::kPositionConstraints);
     const bool parallel = arena_ != nullptr;
     if (stretch_) stretch_->project(x_, w_, h, parallel);
     if (bending_) bending_->project(x_, w_, h, parallel);
@@ -99,15 +84,15 @@ void ClothSimulation::substep(double h) {
     }
   }
   if (contacts_) {
-    ScopedPhase timer(times_, Phase::kContactConstraints);
+    const ScopedPhase timer = timed(Phase::kContactConstraints);
     contacts_->project(x_, x_start_, w_);
   }
   {
-    ScopedPhase timer(times_, Phase::kVelocityUpdate);
+    const ScopedPhase timer = timed(Phase::kVelocityUpdate);
     v_ = (x_ - x_start_) / h;
   }
   if (velocity_pass_) {
-    ScopedPhase timer(times_, Phase::kVelocityConstraints);
+    const ScopedPhase timer = timed(Phase::kVelocityConstraints);
     if (contacts_) contacts_->applyFriction(v_, h);
     if (damping_ > 0) v_ *= std::exp(-damping_ * h);
   }

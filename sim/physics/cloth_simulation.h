@@ -12,32 +12,24 @@
 #include <optional>
 #include <vector>
 
-#include "contact/contact_model.h"
-#include "physics/cloth_mesh.h"
-#include "physics/contacts.h"
+#include "contact/cloth_contact.h"
+#include "model/cloth_mesh.h"
+#include "model/scene.h"
+#include "physics/cloth_contact_solver.h"
 #include "physics/distance_constraints.h"
-#include "physics/phases.h"
-#include "scene/scene.h"
+#include "physics/simulation.h"
 
 namespace fse_sim {
 
-class ClothSimulation {
+class ClothSimulation final : public Simulation {
  public:
   ClothSimulation(const Scene& scene, const SimulationOptions& options = {});
 
-  /// Advances by one step (Scene::time.step).
-  void step();
-
-  double time() const { return time_; }
   const ClothMesh& mesh() const { return mesh_; }
   const Eigen::Matrix3Xd& positions() const { return x_; }
   const Eigen::Matrix3Xd& velocities() const { return v_; }
   double vertexMass() const { return vertex_mass_; }
 
-  /// The phases this scene runs, in the paper's order; the others cost nothing.
-  const std::vector<Phase>& phases() const { return phases_; }
-  /// Time per phase of the last step (0 for phases not run).
-  const PhaseTimes& lastStepTimes() const { return times_; }
   /// The contacts (nullptr without `collision`).
   const Contacts* contacts() const { return contacts_.get(); }
 
@@ -47,7 +39,9 @@ class ClothSimulation {
   double energy() const;
 
  private:
-  void substep(double h);
+  void detect(double h) override;
+  void runSubsteps(int n, double h) override;  ///< on the run's threads
+  void substep(double h) override;
 
   Scene scene_;
   ClothMesh mesh_;
@@ -62,10 +56,6 @@ class ClothSimulation {
   bool velocity_pass_ = false, position_pass_ = false;
   DistanceConstraints edges_;               ///< every edge, for measuring strain only
   std::unique_ptr<tbb::task_arena> arena_;  ///< the run's threads (none: the calling thread)
-  std::vector<Phase> phases_;
-  PhaseTimes times_{};
-  double time_ = 0;
-  long steps_ = 0;
 };
 
 }  // namespace fse_sim

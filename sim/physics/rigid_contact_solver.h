@@ -30,8 +30,8 @@
 #include <vector>
 
 #include "contact/rigid_contact.h"
-#include "physics/rigid_body.h"
-#include "scene/scene.h"
+#include "model/rigid_body.h"
+#include "model/scene.h"
 
 namespace fse_sim {
 

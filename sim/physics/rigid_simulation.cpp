@@ -21,7 +21,7 @@ Eigen::Quaterniond turnedBy(const Eigen::Quaterniond& q, const Eigen::Vector3d& 
 }  // namespace
 
 RigidSimulation::RigidSimulation(const Scene& scene, const SimulationOptions& options)
-    : scene_(scene) {
+    : Simulation(scene.time), scene_(scene) {
   for (const BodySpec& spec : sceneBodies(*scene.rigid_bodies)) {
     bodies_.push_back(makeBody(spec, scene.rigid_bodies->density));
   }
@@ -36,62 +36,46 @@ RigidSimulation::RigidSimulation(const Scene& scene, const SimulationOptions& op
   // Measurement on the exact surfaces, whatever the model (not timed; report/).
   measure_ = std::make_unique<RigidContactFinder>(
       bodies_, bowl(), ContactModel::kExact, scene.rigid_bodies->mesh_vertices, options.threads);
-  phases_.push_back(Phase::kIntegration);
-  if (solver_) phases_.push_back(Phase::kContactConstraints);
-  phases_.push_back(Phase::kVelocityUpdate);
-  if (solver_ || damping_ > 0) phases_.push_back(Phase::kVelocityConstraints);
-  if (finder_) phases_.push_back(Phase::kCollisionDetection);
-  phases_.push_back(Phase::kTotal);
+  declarePhases(false, solver_.has_value(), solver_ || damping_ > 0, finder_ != nullptr);
 }
 
-void RigidSimulation::step() {
-  times_.fill(0);
-  {
-    ScopedPhase total(times_, Phase::kTotal);
-    const double h = scene_.time.step;
-    if (finder_) {
-      ScopedPhase timer(times_, Phase::kCollisionDetection);
-      // The farthest a body's point can get in the step, doubled for what contacts may add:
-      // beyond tolerance + both travels a pair cannot touch before the next detection.
-      travel_.resize(bodies_.size());
-      for (std::size_t i = 0; i < bodies_.size(); ++i) {
-        const RigidBody& b = bodies_[i];
-        travel_[i] = b.fixed() ? 0 : 2 * (b.pointSpeedBound() * h + gravity_.norm() * h * h);
-      }
-      finder_->find(bodies_, scene_.rigid_contact->tolerance, travel_, contacts_);
-      // A support contact follows the support point only where a body's turn in the step can
-      // move its points by more than half the tolerance: otherwise the point found at
-      // detection stays the lowest to well within the tolerance, and a fixed material point is
-      // what lets static friction hold a resting body (a point that follows the support lets
-      // it roll freely and rock on its faces).
-      const double tolerance = scene_.rigid_contact->tolerance;
-      auto turns = [&](int i) {
-        if (i < 0) return false;
-        const RigidBody& b = bodies_[std::size_t(i)];
-        return b.omega.norm() * h * b.bounding_radius > 0.5 * tolerance;
-      };
-      for (RigidContact& c : contacts_) {
-        c.follows_support = c.follows_support && (turns(c.a) || turns(c.b));
-      }
-    }
-    const int n = scene_.time.substeps;
-    for (int s = 0; s < n; ++s) substep(h / n);
+void RigidSimulation::detect(double h) {
+  // The farthest a body's point can get in the step, doubled for what contacts may add:
+  // beyond tolerance + both travels a pair cannot touch before the next detection.
+  travel_.resize(bodies_.size());
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    const RigidBody& b = bodies_[i];
+    travel_[i] = b.fixed() ? 0 : 2 * (b.pointSpeedBound() * h + gravity_.norm() * h * h);
   }
-  time_ = scene_.time.step * double(++steps_);
+  finder_->find(bodies_, scene_.rigid_contact->tolerance, travel_, contacts_);
+  // A support contact follows the support point only where a body's turn in the step can
+  // move its points by more than half the tolerance: otherwise the point found at
+  // detection stays the lowest to well within the tolerance, and a fixed material point is
+  // what lets static friction hold a resting body (a point that follows the support lets
+  // it roll freely and rock on its faces).
+  const double tolerance = scene_.rigid_contact->tolerance;
+  auto turns = [&](int i) {
+    if (i < 0) return false;
+    const RigidBody& b = bodies_[std::size_t(i)];
+    return b.omega.norm() * h * b.bounding_radius > 0.5 * tolerance;
+  };
+  for (RigidContact& c : contacts_) {
+    c.follows_support = c.follows_support && (turns(c.a) || turns(c.b));
+  }
 }
 
 void RigidSimulation::substep(double h) {
   if (solver_) {
     // Support contacts at the substep's poses, and the contacts' normal velocities before it
     // (restitution), timed as contact work.
-    ScopedPhase timer(times_, Phase::kContactConstraints);
+    const ScopedPhase timer = timed(Phase::kContactConstraints);
     for (RigidContact& c : contacts_) {
       if (c.follows_support) followSupport(bodies_, c);
     }
     solver_->begin(bodies_, contacts_);
   }
   {
-    ScopedPhase timer(times_, Phase::kIntegration);
+    const ScopedPhase timer = timed(Phase::kIntegration);
     for (RigidBody& b : bodies_) {
       b.x_prev = b.x;
       b.q_prev = b.q;
@@ -113,11 +97,11 @@ void RigidSimulation::substep(double h) {
     }
   }
   if (solver_) {
-    ScopedPhase timer(times_, Phase::kContactConstraints);
+    const ScopedPhase timer = timed(Phase::kContactConstraints);
     solver_->projectPositions(bodies_, contacts_, h);
   }
   {
-    ScopedPhase timer(times_, Phase::kVelocityUpdate);
+    const ScopedPhase timer = timed(Phase::kVelocityUpdate);
     for (RigidBody& b : bodies_) {
       if (b.fixed()) continue;
       b.v = (b.x - b.x_prev) / h;
@@ -130,7 +114,7 @@ void RigidSimulation::substep(double h) {
     }
   }
   if (solver_ || damping_ > 0) {
-    ScopedPhase timer(times_, Phase::kVelocityConstraints);
+    const ScopedPhase timer = timed(Phase::kVelocityConstraints);
     if (solver_) solver_->solveVelocities(bodies_, contacts_, h);
     if (damping_ > 0) {
       const double decay = std::exp(-damping_ * h);

@@ -13,28 +13,22 @@
 #include <vector>
 
 #include "contact/rigid_contact.h"
-#include "physics/phases.h"
-#include "physics/rigid_body.h"
+#include "model/rigid_body.h"
+#include "model/scene.h"
+#include "model/static_mesh.h"
 #include "physics/rigid_contact_solver.h"
-#include "physics/static_mesh.h"
-#include "scene/scene.h"
+#include "physics/simulation.h"
 
 namespace fse_sim {
 
-class RigidSimulation {
+class RigidSimulation final : public Simulation {
  public:
   /// options.model: exact, vertices, paper or mesh (contact/rigid_contact.h).
   RigidSimulation(const Scene& scene, const SimulationOptions& options = {});
 
-  /// Advances by one step (Scene::time.step).
-  void step();
-
-  double time() const { return time_; }
   const std::vector<RigidBody>& bodies() const { return bodies_; }
   /// The fixed bowl (nullptr: the scene has none).
   const StaticMesh* bowl() const { return bowl_ ? &*bowl_ : nullptr; }
-  const std::vector<Phase>& phases() const { return phases_; }
-  const PhaseTimes& lastStepTimes() const { return times_; }
   /// Contacts gathered for the last step, and those resolved in its last substep.
   const std::vector<RigidContact>& contacts() const { return contacts_; }
   int contactCount() const { return int(contacts_.size()); }
@@ -49,7 +43,8 @@ class RigidSimulation {
   double leastDistance(double reach) const;
 
  private:
-  void substep(double h);
+  void detect(double h) override;
+  void substep(double h) override;
 
   Scene scene_;
   std::vector<RigidBody> bodies_;
@@ -61,10 +56,6 @@ class RigidSimulation {
   std::optional<RigidContactSolver> solver_;
   std::vector<RigidContact> contacts_;
   std::vector<double> travel_;  ///< per body, this step (collision detection)
-  std::vector<Phase> phases_;
-  PhaseTimes times_{};
-  double time_ = 0;
-  long steps_ = 0;
 };
 
 }  // namespace fse_sim

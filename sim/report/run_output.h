@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "physics/cloth_mesh.h"
+#include "model/cloth_mesh.h"
 #include "physics/phases.h"
 #include "report/measurements.h"
 

@@ -11,13 +11,9 @@
 #include <string>
 #include <vector>
 
-namespace fse_sim {
+#include "model/scene.h"
 
-/// A scene file that cannot be used: the message names the file position or JSON path.
-class SceneError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+namespace fse_sim {
 
 /// The path of member `key` of the object at `path`, JSON Pointer escaping applied.
 std::string childPath(const std::string& path, const std::string& key);

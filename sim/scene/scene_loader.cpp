@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "physics/static_mesh.h"
+#include "model/static_mesh.h"
 #include "scene/rigid_bodies.h"
 
 namespace fse_sim {

@@ -7,8 +7,8 @@
 
 #include <string>
 
+#include "model/scene.h"
 #include "scene/json_reader.h"
-#include "scene/scene.h"
 
 namespace fse_sim {
 

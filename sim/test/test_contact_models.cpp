@@ -7,7 +7,7 @@
 
 #include <random>
 
-#include "contact/contact_model.h"
+#include "contact/cloth_contact.h"
 
 namespace fse_sim {
 namespace {

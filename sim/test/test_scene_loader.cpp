@@ -9,8 +9,8 @@
 #include <fstream>
 #include <vector>
 
-#include "physics/cloth_mesh.h"
-#include "physics/static_mesh.h"
+#include "model/cloth_mesh.h"
+#include "model/static_mesh.h"
 #include "scene/scene_loader.h"
 
 namespace fse_sim {

@@ -1,5 +1,5 @@
-#ifndef FSE_SIM_PHYSICS_RIGID_BODY_H
-#define FSE_SIM_PHYSICS_RIGID_BODY_H
+#ifndef FSE_SIM_MODEL_RIGID_BODY_H
+#define FSE_SIM_MODEL_RIGID_BODY_H
 
 // A rigid superellipsoid body of a `rigid_bodies` scene: its shape, mass properties and state,
 // and the two ways XPBD changes it (Müller et al. 2020, "Detailed rigid body simulation with
@@ -15,8 +15,8 @@
 #include <memory>
 #include <vector>
 
-#include "scene/rigid_bodies.h"
-#include "scene/scene.h"
+#include "model/scene.h"
+#include "model/scene_bodies.h"
 
 namespace fse_sim {
 
@@ -71,4 +71,4 @@ double maxPointSpeed(const std::vector<RigidBody>& bodies);
 
 }  // namespace fse_sim
 
-#endif  // FSE_SIM_PHYSICS_RIGID_BODY_H
+#endif  // FSE_SIM_MODEL_RIGID_BODY_H

@@ -1,5 +1,5 @@
-#ifndef FSE_SIM_PHYSICS_STATIC_MESH_H
-#define FSE_SIM_PHYSICS_STATIC_MESH_H
+#ifndef FSE_SIM_MODEL_STATIC_MESH_H
+#define FSE_SIM_MODEL_STATIC_MESH_H
 
 // The fixed bowl of a rigid-body scene: a closed triangle mesh in the world frame, generated
 // from the scene's sizes or read from an OBJ file, and a uniform grid over it that finds the
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/scene.h"
+#include "model/scene.h"
 
 namespace fse_sim {
 
@@ -65,4 +65,4 @@ class MeshGrid {
 
 }  // namespace fse_sim
 
-#endif  // FSE_SIM_PHYSICS_STATIC_MESH_H
+#endif  // FSE_SIM_MODEL_STATIC_MESH_H

@@ -17,7 +17,7 @@
 #include <cmath>
 #include <map>
 
-#include "contact/contact_model.h"
+#include "contact/cloth_contact.h"
 
 namespace fse_sim {
 

@@ -1,4 +1,4 @@
-#include "physics/cloth_mesh.h"
+#include "model/cloth_mesh.h"
 
 #include <algorithm>
 #include <map>

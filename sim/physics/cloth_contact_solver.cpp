@@ -1,4 +1,4 @@
-#include "physics/contacts.h"
+#include "physics/cloth_contact_solver.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "scene/scene.h"
+#include "model/scene.h"
 
 #include <algorithm>
 

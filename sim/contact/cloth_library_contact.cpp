@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-#include "contact/contact_model.h"
+#include "contact/cloth_contact.h"
 
 namespace fse_sim {
 

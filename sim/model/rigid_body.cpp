@@ -1,8 +1,8 @@
-#include "physics/rigid_body.h"
+#include "model/rigid_body.h"
 
 #include <algorithm>
 
-#include "contact/contact_model.h"
+#include "model/shapes.h"
 
 namespace fse_sim {
 

@@ -1,5 +1,5 @@
-#ifndef FSE_SIM_PHYSICS_CONTACTS_H
-#define FSE_SIM_PHYSICS_CONTACTS_H
+#ifndef FSE_SIM_PHYSICS_CLOTH_CONTACT_SOLVER_H
+#define FSE_SIM_PHYSICS_CLOTH_CONTACT_SOLVER_H
 
 // The `collision` effect (and `friction`, which acts at its contacts): positional contacts as
 // in Müller et al. 2020 ("Detailed rigid body simulation with extended position based
@@ -21,8 +21,8 @@
 #include <memory>
 #include <vector>
 
-#include "contact/contact_model.h"
-#include "scene/scene.h"
+#include "contact/cloth_contact.h"
+#include "model/scene.h"
 
 namespace fse_sim {
 
@@ -61,4 +61,4 @@ class Contacts {
 
 }  // namespace fse_sim
 
-#endif  // FSE_SIM_PHYSICS_CONTACTS_H
+#endif  // FSE_SIM_PHYSICS_CLOTH_CONTACT_SOLVER_H

@@ -1,5 +1,5 @@
-#ifndef FSE_SIM_SCENE_SCENE_H
-#define FSE_SIM_SCENE_SCENE_H
+#ifndef FSE_SIM_MODEL_SCENE_H
+#define FSE_SIM_MODEL_SCENE_H
 
 // A scene as the runner sees it once its file has been read and checked (scene_loader.h):
 // plain values, every one validated, nothing optional left undecided. The effects a scene
@@ -8,11 +8,18 @@
 #include <Eigen/Core>
 #include <array>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace fse_sim {
+
+/// A scene that cannot be used: the message names the file position or JSON path.
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 /// What a scene can ask to be simulated. Each has its own parameter block in the scene file,
 /// under the effect's name; a block for an effect that is not declared is an error.
@@ -180,4 +187,4 @@ struct Scene {
 
 }  // namespace fse_sim
 
-#endif  // FSE_SIM_SCENE_SCENE_H
+#endif  // FSE_SIM_MODEL_SCENE_H

@@ -1,4 +1,4 @@
-#include "physics/static_mesh.h"
+#include "model/static_mesh.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <map>
 #include <sstream>
 
-#include "scene/json_reader.h"
+#include "model/scene.h"
 
 namespace fse_sim {
 namespace {

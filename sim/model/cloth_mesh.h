@@ -1,5 +1,5 @@
-#ifndef FSE_SIM_PHYSICS_CLOTH_MESH_H
-#define FSE_SIM_PHYSICS_CLOTH_MESH_H
+#ifndef FSE_SIM_MODEL_CLOTH_MESH_H
+#define FSE_SIM_MODEL_CLOTH_MESH_H
 
 // The cloth's topology and rest shape: a rectangular grid of nx × ny vertices, each quad cut
 // into two triangles (2·(nx−1)·(ny−1) triangles: 6,254 for the paper's 54 × 60 grid).
@@ -8,7 +8,7 @@
 #include <array>
 #include <vector>
 
-#include "scene/scene.h"
+#include "model/scene.h"
 
 namespace fse_sim {
 
@@ -30,4 +30,4 @@ ClothMesh makeClothMesh(const ClothSpec& spec);
 
 }  // namespace fse_sim
 
-#endif  // FSE_SIM_PHYSICS_CLOTH_MESH_H
+#endif  // FSE_SIM_MODEL_CLOTH_MESH_H

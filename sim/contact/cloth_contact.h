@@ -1,5 +1,5 @@
-#ifndef FSE_SIM_CONTACT_CONTACT_MODEL_H
-#define FSE_SIM_CONTACT_CONTACT_MODEL_H
+#ifndef FSE_SIM_CONTACT_CLOTH_CONTACT_H
+#define FSE_SIM_CONTACT_CLOTH_CONTACT_H
 
 // How cloth vertices find the surface of one rigid superellipsoid: the scene's collision
 // detection. Three models, chosen per run (scene.h → ContactModel): the library's Exact
@@ -13,7 +13,8 @@
 #include <memory>
 #include <vector>
 
-#include "scene/scene.h"
+#include "model/scene.h"
+#include "model/shapes.h"
 
 namespace fse_sim {
 
@@ -26,12 +27,6 @@ struct ContactCandidate {
   Eigen::Vector3d point;   ///< nearest surface point the model found, world frame
   Eigen::Vector3d normal;  ///< outward unit normal there, world frame
 };
-
-/// The pose of a scene shape: translation, then rotations about fixed x, y, z.
-Eigen::Isometry3d shapePose(const ShapeSpec& spec);
-/// The same pose as FCL's transform (what the library's calls take).
-fcl::Transform3d shapeTransform(const ShapeSpec& spec);
-fcl_superellipsoid::Superellipsoidd makeShape(const ShapeSpec& spec);
 
 class ContactDetector {
  public:
@@ -49,4 +44,4 @@ std::unique_ptr<ContactDetector> makeContactDetector(const ShapeSpec& spec, int 
 
 }  // namespace fse_sim
 
-#endif  // FSE_SIM_CONTACT_CONTACT_MODEL_H
+#endif  // FSE_SIM_CONTACT_CLOTH_CONTACT_H
