@@ -3,9 +3,12 @@
 #   scripts/bench.sh            the quick mode (seconds after the build): out/ (CSV, JSON, PNG plots)
 #                               and out/benchmark.md; then the scenes' quick variants, the cloth
 #                               and the bowl (scripts/scenes.sh: out/scenes/)
-#   scripts/bench.sh --full     everything (about 20 minutes on 2 cores): fse_bench's full run, the
-#                               micro-benchmarks, the culling study and the aspect sweep; writes
-#                               docs/benchmark.md, docs/bench/*.png and the README's headline block
+#   scripts/bench.sh --full     everything (about 30 minutes on 2 cores): fse_bench's full run, the
+#                               micro-benchmarks, the culling study and the aspect sweep, the pairs,
+#                               and the scenes' full variants (scripts/scenes.sh --full); writes
+#                               every generated page (docs/benchmark.md, docs/pairs.md,
+#                               docs/scenes.md), their pictures and the README's generated blocks,
+#                               all from this one run
 #   scripts/bench.sh --pairs    the superellipsoid against every FCL shape, against FCL's libccd and
 #                               Bullet (a minute); writes docs/pairs.md's results, docs/bench/pairs.png
 #                               and the README's pairs block (also part of --full)
@@ -19,10 +22,7 @@ bench=build/bench
 if [ $# -eq 0 ]; then set -- --quick; fi
 pairs() {
   mkdir -p out/pairs
-  git rev-parse --short HEAD > out/pairs/commit 2>/dev/null || echo unknown > out/pairs/commit
-  if [ -n "$(git status --porcelain --untracked-files=no -- . ':!docs' ':!README.md' 2>/dev/null)" ]; then
-    sed -i 's/$/ (with uncommitted changes)/' out/pairs/commit
-  fi
+  /usr/bin/python3 scripts/doc_blocks.py > out/pairs/commit
   $bench/fse_bench --pairs 600 --out out/pairs | tee out/pairs/pairs.txt
   /usr/bin/python3 bench/plot.py out/pairs
   /usr/bin/python3 bench/pairs_doc.py out/pairs --docs docs --readme README.md
@@ -33,6 +33,7 @@ if [ "$1" = "--pairs" ]; then
 fi
 if [ "$1" = "--full" ]; then
   rm -rf out && mkdir -p out
+  /usr/bin/python3 scripts/doc_blocks.py > out/commit
   $bench/fse_bench --out out
   $bench/fse_microbench --benchmark_min_time=0.2 --benchmark_out=out/micro.json \
     --benchmark_out_format=json
@@ -41,6 +42,7 @@ if [ "$1" = "--full" ]; then
   /usr/bin/python3 bench/plot.py out
   /usr/bin/python3 bench/benchmark_doc.py out --docs docs --readme README.md
   pairs
+  scripts/scenes.sh --full
   exit 0
 fi
 $bench/fse_bench "$@"   # writes to out/ unless --out says otherwise

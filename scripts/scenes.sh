@@ -20,7 +20,7 @@ every=(--contact exact paper mesh --peer --snapshots 0 1 2 3 5 10)
 bowl=(--contact exact vertices paper mesh --peer --snapshots 0 1 2 4 8 15)
 # The commit a run was made at, for its report's stamp (uncommitted changes marked).
 record_commit() {
-  if commit=$(git describe --always --dirty 2>/dev/null); then echo "$commit" > "$1/commit"; fi
+  /usr/bin/python3 scripts/doc_blocks.py > "$1/commit"
 }
 case "${1:-}" in
   "")

@@ -28,7 +28,7 @@ bool withinCoordinateRange(const Derived& v) {
 }
 
 /// The error checkPose throws, out of line: the message's string building stays off the
-/// callers' path (it once cost a pair query 10 % of its time in stack set-up alone).
+/// callers' path, whose stack set-up would otherwise be a visible part of a cheap pair query.
 template <typename S>
 [[noreturn, gnu::cold, gnu::noinline]] void throwBadPose(
     const char* where, const char* name, const Eigen::Matrix<S, 3, 1>& translation) {

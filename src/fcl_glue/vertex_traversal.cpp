@@ -187,7 +187,7 @@ class VertexTraversal {
       return a.first < b.first || (a.first == b.first && inside_[a.second] < inside_[b.second]);
     };
     if (keep == keys.size()) {
-      // std::sort took about 40 ns per key here, a noticeable part of a query with many contacts.
+      // Sorting on one thread is a noticeable part of a query with many contacts.
       parallelSort(keys.begin(), keys.end(), deeper);
     } else {
       std::partial_sort(keys.begin(), keys.begin() + std::ptrdiff_t(keep), keys.end(), deeper);

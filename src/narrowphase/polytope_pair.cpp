@@ -514,8 +514,8 @@ PairHit<S> overlap(const ShapePair<S>& pair, const Polytope<S>& p, const PairHit
     if (depth.certified(outside, tolerance)) return depth.best();
     // Where the vertex does not support the polytope along its own escape direction, F there is
     // above h_A(v) − v·w, whose other local minima can be F's: near a mirror plane of the
-    // superellipsoid they mirror the escape direction across it (a rounded shape's overlap with
-    // a triangle was 0.0047 × size too deep: RoundedOverlapsAgainstTheEnumeratedDepth).
+    // superellipsoid they mirror the escape direction across it (without them a rounded shape's
+    // overlap with a triangle comes out too deep: RoundedOverlapsAgainstTheEnumeratedDepth).
     if (escapes[i].f > -escapes[i].distance + tolerance) {
       for (int k = 0; k < 3; ++k) {
         depth.offerDescent(vertex, mirrored(pair, escapes[i].direction, k));
@@ -524,8 +524,8 @@ PairHit<S> overlap(const ShapePair<S>& pair, const Polytope<S>& p, const PairHit
       // Where A is box-like, f_b has a local minimum near each of its axis directions (the
       // depth below each flat face); one in b's region can be F's minimum while the escape
       // direction lies below another face, outside it (a rounded shape's overlap with a
-      // triangle was 2.3e-4 × size too deep: RoundedOverlapsAgainstTheEnumeratedDepth). So f_b
-      // also descends from each of A's six axis directions that lies in b's region.
+      // triangle would come out too deep: RoundedOverlapsAgainstTheEnumeratedDepth). So f_b also
+      // descends from each of A's six axis directions that lies in b's region.
       for (int k = 0; k < 6; ++k) {
         const Vector3<S> axis = pair.X_WS->linear().col(k % 3) * (k < 3 ? S(1) : S(-1));
         if (p.support(Vector3<S>(-axis)) > -axis.dot(p.vertices[i]) + tolerance) continue;
@@ -548,8 +548,8 @@ PairHit<S> overlap(const ShapePair<S>& pair, const Polytope<S>& p, const PairHit
     }
     if (depth.certified(outside, tolerance)) return depth.best();
   }
-  // In float the candidates alone missed one of FloatAgreesWithDouble's triangle overlaps by
-  // 0.022 × size (docs/math.md); float keeps the pattern search.
+  // In float the candidates alone can miss a triangle overlap's depth (FloatAgreesWithDouble,
+  // docs/math.md); float keeps the pattern search.
   if constexpr (std::is_same_v<S, float>) return depth.refinedBest();
   return depth.best();
 }

@@ -491,8 +491,8 @@ PairHit<S> overlap(const ShapePair<S>& pair, const Round<S>& b, const PairHit<S>
   // Each descent may give a candidate the balls certify; then the rest is not needed. A rim's
   // descent that ends outside the rim's region, below the best F so far, may hide F's minimum
   // in a second local minimum of f_P inside the region, the first's mirror image across the
-  // side's normals: a cylinder overlap was 4.1e-4 × size too deep (docs/math.md). Each such end
-  // is mirrored once.
+  // side's normals, where the depth would come out too deep (docs/math.md). Each such end is
+  // mirrored once.
   std::vector<Vector3<S>> mirrored;
   auto descend = [&](const SupportMap<S>& piece, const Vector3<S>& from, int steps, auto stop,
                      S side) {

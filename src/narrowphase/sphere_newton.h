@@ -21,9 +21,8 @@ namespace detail {
 constexpr int kSphereNewtonIterations = 200;
 /// A full Newton step (no shift, no backtracking) shorter than this (rad) is the last: where
 /// Newton converges quadratically the error after it is of order this squared, far below
-/// rounding, and the steps after it only wander in F's rounding noise (the benchmark's cone
-/// pairs took 2.1 of their 7.5 steps per descent below 1e-9 rad before this stop; docs/math.md →
-/// "Smooth partners: Newton on the sphere").
+/// rounding, and the steps after it only wander in F's rounding noise (docs/math.md → "Smooth
+/// partners: Newton on the sphere").
 constexpr double kSphereNewtonConverged = 1e-9;
 
 template <typename S>

@@ -20,7 +20,7 @@ namespace detail {
 
 /// A lower bound on the smallest principal radius of curvature of the superellipsoid with these
 /// radii and exponents (exponents in (0, 2)); 0 where an exponent exceeds 1. Evaluated in
-/// double; costs about a millisecond, so the shape computes it once, on first use.
+/// double; it costs thousands of evaluations, so the shape computes it once, on first use.
 double minRadiusOfCurvature(const Eigen::Vector3d& radii, double eps1, double eps2);
 
 }  // namespace detail

@@ -210,8 +210,8 @@ std::size_t DirectionCover<S>::failingFinest(const Vector3<S>& y, S need,
     return boundReaches(l.h[p] - ay, sy, l.ss[p], yy, l.cos_t[p], l.sin2_t[p], need);
   };
   // Level by level: the failing cells of one level, then their children on the next. The lists
-  // live on the stack (at most the finest level's 768 cells): two heap lists per call cost the
-  // uniform inside queries 2–4 % of their time.
+  // live on the stack (at most the finest level's 768 cells): every inside query that reaches
+  // the cover comes here, and two heap lists per call would be a visible part of its time.
   std::array<std::uint16_t, kFinestCells> spare;
   std::uint16_t* next = spare.data();
   std::size_t failing_count = 0;

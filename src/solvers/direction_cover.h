@@ -46,7 +46,8 @@ class DirectionCover {
   /// Evaluates the shape's support point in every cell's centre direction (1,008 of them), each
   /// pulled toward the centre by a few ulps so that it lies inside the shape despite rounding
   /// (the bounds need points of the shape, not near it), and in the 3,072 directions of the
-  /// first split grid (splitSupport); about 0.4 ms.
+  /// first split grid (splitSupport). Its cost is the first inside query's on a new shape
+  /// (docs/benchmark.md → "Micro-benchmarks").
   explicit DirectionCover(const Superellipsoid<S>& shape);
 
   /// A first-octant surface point whose normal lies near the nearest point's normal for a point
