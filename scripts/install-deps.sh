@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # Installs the Debian packages the project needs, if any is missing. Needs root (apt-get).
 #   scripts/install-deps.sh           what building and testing need
-#   scripts/install-deps.sh --bench   and python3-matplotlib, for the benchmark's plots
+#   scripts/install-deps.sh --bench   and python3-matplotlib and povray, for the plots and pictures
 #   scripts/install-deps.sh --fuzz    and clang with its sanitizer and libFuzzer runtimes
 set -euo pipefail
 packages=(cmake g++ make libfcl-dev libccd-dev libeigen3-dev liboctomap-dev libgtest-dev
           libbenchmark-dev libcli11-dev libbullet-dev nlohmann-json3-dev libtbb-dev libhwy-dev)
 case "${1:-}" in
-  --bench) packages+=(python3-matplotlib) ;;
+  --bench) packages+=(python3-matplotlib povray) ;;
   --fuzz) packages+=(clang libclang-rt-dev) ;;
 esac
 missing=()

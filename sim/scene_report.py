@@ -13,14 +13,17 @@ and, without --docs, RUN_DIR/results.md (the tables, generated here; with --docs
 the results block of DOCS/scenes.md instead), and with --readme the README's scenes block
 (between `<!-- scenes:begin -->` and `<!-- scenes:end -->`; rigid-body scenes in its second
 table).
-Needs Debian's python3-matplotlib.
+Needs Debian's python3-matplotlib, and povray for the pictures (a ray tracer: a cloth that lies on
+a shape hides it where it covers it).
 """
 import argparse
 import csv
 import json
 import math
 import os
+import subprocess
 import sys
+import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scripts"))
 from doc_blocks import replace_block, run_commit  # noqa: E402
@@ -31,7 +34,6 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
 # The paper's Tables 5 and 6 (ms per step, its case-study machine).
 PAPER = {
@@ -122,36 +124,89 @@ def label(run, model):
     return (RIGID_LABEL if rigid else LABEL).get(model, model)
 
 
-def shaded(polys, base):
-    """Flat shading: each face's colour scaled by |n·l| (two-sided) for a light from above-front."""
-    light = (0.3, -0.5, 0.81)
+def pov_vector(v):
+    """A point in POV-Ray's frame: it is left-handed with y up, ours right-handed with z up, so
+    y and z trade places (which also turns the handedness)."""
+    return f"<{v[0]:.6g},{v[2]:.6g},{v[1]:.6g}>"
+
+
+def pov_mesh(vertices, faces, colour):
+    """A mesh2 object of triangles (faces of more than 3 vertices as fans)."""
+    triangles = [(f[0], f[k], f[k + 1]) for f in faces for k in range(1, len(f) - 1)]
+    return ("mesh2 {\n vertex_vectors { " + str(len(vertices)) + ",\n  "
+            + ",\n  ".join(pov_vector(v) for v in vertices) + " }\n"
+            + " face_indices { " + str(len(triangles)) + ",\n  "
+            + ",\n  ".join(f"<{a},{b},{c}>" for a, b, c in triangles) + " }\n"
+            + f" texture {{ pigment {{ rgb <{colour[0]},{colour[1]},{colour[2]}> }}"
+            + " finish { ambient 0.25 diffuse 0.75 specular 0.15 roughness 0.05 } }\n}\n")
+
+
+def render(meshes, centre, extent, elev, azim, path, size=(640, 480)):
+    """Renders `meshes` ((vertices, faces, colour) each) with POV-Ray, a ray tracer: every pixel
+    shows the surface nearest the eye, so a cloth that lies on a shape hides it wherever it
+    covers it. The camera looks at `centre` from the elevation and azimuth given (degrees, as
+    matplotlib's view_init), far enough to see a ball of radius `extent` whole."""
+    e, a = math.radians(elev), math.radians(azim)
+    direction = (math.cos(e) * math.cos(a), math.cos(e) * math.sin(a), math.sin(e))
+    distance = 3.2 * extent
+    eye = [centre[k] + distance * direction[k] for k in range(3)]
+    light = [centre[k] + distance * (direction[k] + (0.0, 0.0, 1.2)[k]) for k in range(3)]
+    scene = ("#version 3.7;\nglobal_settings { assumed_gamma 1.0 }\nbackground { rgb 1 }\n"
+             f"camera {{ perspective location {pov_vector(eye)} look_at {pov_vector(centre)} "
+             f"right x*{size[0]}/{size[1]} angle 40 }}\n"
+             f"light_source {{ {pov_vector(light)} rgb 1.0 }}\n"
+             f"light_source {{ {pov_vector(eye)} rgb 0.35 shadowless }}\n"
+             + "".join(pov_mesh(v, f, c) for v, f, c in meshes))
+    with tempfile.TemporaryDirectory() as tmp:
+        pov = os.path.join(tmp, "scene.pov")
+        with open(pov, "w") as f:
+            f.write(scene)
+        subprocess.run(["povray", f"+I{pov}", f"+O{path}", f"+W{size[0]}", f"+H{size[1]}",
+                        "+FN", "+A0.1", "-D", "-V", "-GA"], check=True, cwd=tmp,
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+
+def offset(vertices, faces, centre, distance):
+    """The cloth moved by `distance` along its vertex normals, away from `centre` (the shape's):
+    drawn with the scene's contact tolerance as its thickness. Its vertices rest on the curved
+    surface, so its flat triangles dip below it between them, and the shape's facets would show
+    through a cloth that lies on it."""
+    normals = [[0.0, 0.0, 0.0] for _ in vertices]
+    for f in faces:
+        for k in range(1, len(f) - 1):
+            a, b, c = (vertices[i] for i in (f[0], f[k], f[k + 1]))
+            u = [b[j] - a[j] for j in range(3)]
+            w = [c[j] - a[j] for j in range(3)]
+            n = (u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0])
+            for i in (f[0], f[k], f[k + 1]):
+                for j in range(3):
+                    normals[i][j] += n[j]
     out = []
-    for poly, colour in zip(polys, base):
-        a, b, c = poly[0], poly[1], poly[2]
-        u = [b[k] - a[k] for k in range(3)]
-        v = [c[k] - a[k] for k in range(3)]
-        n = (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
-        norm = math.sqrt(sum(x * x for x in n)) or 1.0
-        k = 0.35 + 0.65 * abs(sum(n[i] * light[i] for i in range(3))) / norm
-        out.append(tuple(min(1.0, ch * k) for ch in colour))
+    for v, n in zip(vertices, normals):
+        length = math.sqrt(sum(x * x for x in n)) or 1.0
+        sign = 1.0 if sum(n[j] * (v[j] - centre[j]) for j in range(3)) >= 0 else -1.0
+        out.append(tuple(v[j] + sign * distance * n[j] / length for j in range(3)))
     return out
 
 
-def plot_frames(frames_dir, frames, path, suptitle, row_height, dpi, draw):
-    """One 3-D panel per snapshot file, three to a row, titled by its time; draw(ax, file)
-    fills a panel."""
+def plot_frames(frames_dir, frames, path, suptitle, draw):
+    """One rendered panel per snapshot file, three to a row, titled by its time; draw(file, png)
+    renders a panel."""
     cols = min(3, len(frames))
     rows = math.ceil(len(frames) / cols)
-    fig = plt.figure(figsize=(5 * cols, row_height * rows))
-    for k, name in enumerate(frames):
-        ax = fig.add_subplot(rows, cols, k + 1, projection="3d")
-        draw(ax, os.path.join(frames_dir, name))
-        ax.set_axis_off()
-        t = float(name.split("_")[1].rsplit(".", 1)[0])
-        ax.set_title(f"t = {t:g} s", fontsize=10)
+    fig = plt.figure(figsize=(4.8 * cols, 3.9 * rows))
+    with tempfile.TemporaryDirectory() as tmp:
+        for k, name in enumerate(frames):
+            png = os.path.join(tmp, f"{k}.png")
+            draw(os.path.join(frames_dir, name), png)
+            ax = fig.add_subplot(rows, cols, k + 1)
+            ax.imshow(plt.imread(png))
+            ax.set_axis_off()
+            t = float(name.split("_")[1].rsplit(".", 1)[0])
+            ax.set_title(f"t = {t:g} s", fontsize=10)
     fig.suptitle(suptitle)
     fig.tight_layout()
-    fig.savefig(path, dpi=dpi)
+    fig.savefig(path, dpi=100)
     plt.close(fig)
 
 
@@ -162,27 +217,18 @@ def plot_pictures(run_dir, run, path, model="exact"):
     frames = sorted(f for f in os.listdir(frames_dir) if f.startswith("cloth_"))
     if not frames:
         return False
-    shape_v, shape_f = read_obj(os.path.join(run_dir, "shapes.obj"))
-    # Drawn 2 % smaller about its centroid: the cloth rests on the true surface, and
-    # matplotlib's painter's algorithm would otherwise draw facets through it.
-    centre = [sum(v[k] for v in shape_v) / len(shape_v) for k in range(3)]
-    shape_v = [tuple(centre[k] + 0.98 * (v[k] - centre[k]) for k in range(3)) for v in shape_v]
+    shape = read_obj(os.path.join(run_dir, "shapes.obj"))
+    centre = [sum(v[k] for v in shape[0]) / len(shape[0]) for k in range(3)]
+    tolerance = run["scene"].get("tolerance") or 0.0  # the contact tolerance (collision)
 
-    def draw(ax, frame):
+    def draw(frame, png):
         cloth_v, cloth_f = read_obj(frame)
-        # One collection, so that matplotlib depth-sorts the shape's and the cloth's faces
-        # together; flat shading by hand (Debian's matplotlib has no `shade`).
-        polys = [[shape_v[i] for i in f] for f in shape_f] + [[cloth_v[i] for i in f] for f in cloth_f]
-        base = [(0.69, 0.77, 0.87)] * len(shape_f) + [(0.80, 0.36, 0.36)] * len(cloth_f)
-        ax.add_collection3d(Poly3DCollection(polys, facecolors=shaded(polys, base), edgecolor="none"))
-        ax.set_xlim(-5, 5)
-        ax.set_ylim(-5, 5)
-        ax.set_zlim(-3.5, 3)
-        ax.set_box_aspect((10, 10, 6.5))
-        ax.view_init(elev=25, azim=-60)
+        render([(*shape, (0.55, 0.65, 0.82)),
+                (offset(cloth_v, cloth_f, centre, tolerance), cloth_f, (0.80, 0.30, 0.28))],
+               (0.0, 0.0, -0.3), 7.5, 25, -60, png)
 
     plot_frames(frames_dir, frames, path, f"{run['scene']['name']} ({LABEL.get(model, model)})",
-                3.8, 90, draw)
+                draw)
     return True
 
 
@@ -196,24 +242,19 @@ def plot_bodies(run_dir, run, path, model="exact"):
         return False
     bowl_v, bowl_f = read_obj(os.path.join(run_dir, "bowl.obj"))
     # The far half of the bowl's faces (y > 0), so that the bodies inside are seen.
-    bowl_polys = [[bowl_v[i] for i in f] for f in bowl_f if all(bowl_v[i][1] > 0 for i in f)]
+    bowl_half = [f for f in bowl_f if all(bowl_v[i][1] > 0 for i in f)]
     lo = [min(v[k] for v in bowl_v) for k in range(3)]
     hi = [max(v[k] for v in bowl_v) for k in range(3)]
 
-    def draw(ax, frame):
+    def draw(frame, png):
         body_v, body_f = read_obj(frame)
-        polys = bowl_polys + [[body_v[i] for i in f] for f in body_f]
-        base = [(0.75, 0.75, 0.78)] * len(bowl_polys) + [(0.85, 0.45, 0.25)] * len(body_f)
-        ax.add_collection3d(Poly3DCollection(polys, facecolors=shaded(polys, base), edgecolor="none"))
-        ax.set_xlim(lo[0], hi[0])
-        ax.set_ylim(lo[1], hi[1])
         top = max(hi[2], max(v[2] for v in body_v))
-        ax.set_zlim(lo[2], top)
-        ax.set_box_aspect((hi[0] - lo[0], hi[1] - lo[1], top - lo[2]))
-        ax.view_init(elev=20, azim=-90)
+        centre = (0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + top))
+        extent = 0.5 * math.dist((lo[0], lo[1], lo[2]), (hi[0], hi[1], top))
+        render([(bowl_v, bowl_half, (0.78, 0.78, 0.80)), (body_v, body_f, (0.85, 0.45, 0.25))],
+               centre, extent, 20, -90, png)
 
-    plot_frames(frames_dir, frames, path, f"{run['scene']['name']} ({label(run, model)})", 4.2, 80,
-                draw)
+    plot_frames(frames_dir, frames, path, f"{run['scene']['name']} ({label(run, model)})", draw)
     return True
 
 
@@ -389,11 +430,11 @@ def main():
         machine = f"{run['machine']}, SIMD {run['simd']}"
         commits[name] = run_commit(run_dir)
     if len(set(commits.values())) == 1:
-        run_commit = next(iter(commits.values()))
+        stamp_commit = next(iter(commits.values()))
     else:
-        run_commit = ", ".join(f"{c} ({n})" for n, c in commits.items())
+        stamp_commit = ", ".join(f"{c} ({n})" for n, c in commits.items())
     command = "scripts/scenes.sh --full" if args.docs else "scripts/scenes.sh"
-    stamp = f"_Run at commit {run_commit}; machine: {machine}. Command: `{command}`._"
+    stamp = f"_Run at commit {stamp_commit}; machine: {machine}. Command: `{command}`._"
     results = "\n".join(sections) + "\n" + stamp
     for path in [os.path.join(a, "results.md") for a in args.runs] if not args.docs else []:
         with open(path, "w") as f:
