@@ -306,6 +306,7 @@ int main(int argc, char** argv) {
                    "at least one step (" + std::to_string(scene.time.step) + " s)",
                    options.duration);
       scene.time.duration = options.duration;
+      checkSteps(scene.time, "--duration");
     }
     for (const std::string& name : options.models) {
       const ContactModel model = *contactModelNamed(name);

@@ -1,10 +1,13 @@
-#ifndef FCL_SUPERELLIPSOID_TEST_SOLVERS_BALL_CHECKS_H
-#define FCL_SUPERELLIPSOID_TEST_SOLVERS_BALL_CHECKS_H
+#ifndef FCL_SUPERELLIPSOID_TEST_SUPPORT_BALL_CHECKS_H
+#define FCL_SUPERELLIPSOID_TEST_SUPPORT_BALL_CHECKS_H
 
 // What the inside certificates' tests (test_ball_certificate.cpp, test_direction_cover.cpp)
-// check of a certified ball against the independent long-double reference.
+// share: stationary points of the distance by construction, and the check of a certified ball
+// against the independent long-double reference.
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
 #include <random>
 
 #include "fcl_superellipsoid/superellipsoid.h"
@@ -26,7 +29,31 @@ inline long double worstGaugeOnSphere(const ReferenceDistance& reference, const 
   return worst;
 }
 
+/// A stationary point of the distance inside the shape, by construction: Q = N − d·n for a
+/// surface point N of the first octant and its outward normal n.
+struct StationaryPoint {
+  Vector3<double> y, n_point, normal;
+  double d;
+};
+
+/// A stationary point from the next angles (η, ω) of `angles` and a depth d = min_radius ×
+/// 10^(lo + span·u), u uniform in [0, 1) from `rng`: from shallow to beyond the smallest radius,
+/// where N is mostly a local minimum or a saddle, not the global answer. std::nullopt where Q
+/// leaves the first octant (another octant's point).
+template <typename Angles>
+std::optional<StationaryPoint> stationaryPoint(const Superellipsoid<double>& shape, Angles& angles,
+                                               std::mt19937& rng, double lo, double span) {
+  std::uniform_real_distribution<double> u(0, 1);
+  const auto [eta, omega] = angles();
+  const Vector3<double> n_point = shape.surfacePoint(eta, omega).cwiseAbs();
+  const Vector3<double> normal = shape.normal(n_point);
+  const double d = shape.radii().minCoeff() * std::pow(10.0, lo + span * u(rng));
+  const Vector3<double> y = n_point - d * normal;
+  if ((y.array() < 0).any()) return std::nullopt;
+  return StationaryPoint{y, n_point, normal, d};
+}
+
 }  // namespace test
 }  // namespace fcl_superellipsoid
 
-#endif  // FCL_SUPERELLIPSOID_TEST_SOLVERS_BALL_CHECKS_H
+#endif  // FCL_SUPERELLIPSOID_TEST_SUPPORT_BALL_CHECKS_H

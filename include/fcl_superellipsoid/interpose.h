@@ -33,11 +33,13 @@
 /// translation unit and reads the caller-side tables (fcl_integration.h), so it needs no
 /// interposer for GST_LIBCCD (and does not see the superellipsoid with GST_INDEP).
 
+#include "fcl_superellipsoid/export.h"
+
 namespace fcl_superellipsoid {
 
 /// True when this process's plain fcl::distance<double> and fcl::collide<double> (all four
 /// forms) resolve to the interposer, false when libfcl's own copies won the symbol lookup.
-bool plainCallsInterposed();
+FSE_EXPORT bool plainCallsInterposed();
 
 }  // namespace fcl_superellipsoid
 

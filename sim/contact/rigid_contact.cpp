@@ -296,107 +296,120 @@ struct RigidContactFinder::Impl {
     return !near_triangles.empty();
   }
 
+  /// Body a's contacts with the bowl: its vertices where the bowl is convex, and its faces
+  /// (with their convex edges) within the margin.
   void bowlContacts(const RigidBody& a, int i, double margin,
                     std::vector<RigidContact>& out) const {
     const double reach = a.bounding_radius + margin;
     thread_local std::vector<int> near_vertices, near_triangles;
     grid.query(a.x.array() - reach, a.x.array() + reach, near_vertices, near_triangles);
     const fcl::Transform3d X = a.transform();
-    if (!near_vertices.empty()) {
-      // The bowl's vertices where its surface is convex (the rim) against the body's surface:
-      // a separates from a vertex V along −(its outward normal at V's nearest point). In a
-      // valley of the surface the faces round a vertex reach as far as it does (below).
-      thread_local Eigen::Matrix3Xd points;
-      points.resize(3, long(near_vertices.size()));
-      long count = 0;
-      for (int v : near_vertices) {
-        if (bowl->convex_vertex[std::size_t(v)]) points.col(count++) = bowl->vertices.col(v);
-      }
-      points.conservativeResize(3, count);
-      thread_local std::vector<fse::VertexContact<double>> found;
-      fse::verticesWithinMargin(*a.shape, X, points, margin, found, exact_options);
-      for (const fse::VertexContact<double>& v : found) {
-        RigidContact c;
-        c.a = i;
-        c.b = -1;
-        c.distance = v.distance;
-        c.n = -v.normal;
-        c.r_a = a.q.inverse() * (v.nearest_point - a.x);
-        c.r_b = points.col(v.index);
-        out.push_back(c);
-      }
+    if (!near_vertices.empty()) bowlVertexContacts(a, i, X, near_vertices, margin, out);
+    for (int t : near_triangles) bowlFaceContact(a, i, X, t, margin, out);
+  }
+
+  /// The bowl's vertices where its surface is convex (the rim) against the body's surface: a
+  /// separates from a vertex V along −(its outward normal at V's nearest point). In a valley of
+  /// the surface the faces round a vertex reach as far as it does (bowlFaceContact).
+  void bowlVertexContacts(const RigidBody& a, int i, const fcl::Transform3d& X,
+                          const std::vector<int>& near_vertices, double margin,
+                          std::vector<RigidContact>& out) const {
+    thread_local Eigen::Matrix3Xd points;
+    points.resize(3, long(near_vertices.size()));
+    long count = 0;
+    for (int v : near_vertices) {
+      if (bowl->convex_vertex[std::size_t(v)]) points.col(count++) = bowl->vertices.col(v);
     }
-    // The body against the bowl's triangles whose plane it comes within the margin of (it
-    // reaches down to s − h(−m) along the face's outward normal m, h its support function). On a
-    // face, the body's nearest point to the plane is its support point along −m: where that point
-    // lies over the triangle it is the nearest point to the triangle too (the Halfspace pair's
-    // answer; below, faces whose foot is near the triangle count too). Elsewhere the triangle's
-    // nearest point is on its boundary: at a vertex (the bowl's vertices, above), or at a convex
-    // edge (a rim), where the library's superellipsoid–triangle pair answers. Across a flat or
-    // concave edge, a face beside it or a vertex is at least as near.
-    for (int t : near_triangles) {
-      const fcl::TriangleP<double>& tri = triangles[std::size_t(t)];
-      const Eigen::Vector3d m = bowl->normals.col(t);
-      if (m.squaredNorm() == 0) continue;
-      // A body's centre behind a face is on the solid's side of it: that face is the far
-      // side of a wall (the bowl's outside, seen from its cavity); the near side answers.
-      const double s = m.dot(a.x - tri.a);
-      if (s < 0 || s - a.bounding_radius > margin) continue;
-      const Eigen::Vector3d m_body = a.q.inverse() * m;
-      // An upper bound of the body's support without a power: its bounding box's, Σ aᵢ|mᵢ|,
-      // and where both exponents are ≥ 1 (the shape inside its ellipsoid) the ellipsoid's,
-      // ‖(aᵢ·mᵢ)‖.
-      const bool pointy = a.shape->eps1() >= 1 && a.shape->eps2() >= 1;
-      const double bound = pointy ? a.shape->radii().cwiseProduct(m_body).norm()
-                                  : a.shape->radii().dot(m_body.cwiseAbs());
-      if (s - bound > margin) continue;
-      const Eigen::Vector3d support = a.shape->supportPoint(-m_body);  // body frame
-      const double h = -m_body.dot(support);
-      if (s - h > margin) continue;
-      if (bowl->convex_edge[std::size_t(t)]) {
-        fcl::DistanceRequestd request;
-        request.enable_nearest_points = true;
-        request.enable_signed_distance = true;
-        fcl::DistanceResultd result;
-        const double d =
-            fse::distance(a.shape.get(), X, &tri, fcl::Transform3d::Identity(), request, result);
-        if (!(d <= margin)) continue;
-        // At a rim the triangle's nearest point may be on an edge, where it has no normal: a
-        // separates along the witnesses' difference (apart: w_a − w_b; overlapping, the
-        // witnesses are the support points along the separating direction: w_b − w_a), or
-        // along the face's normal where they coincide.
-        const Eigen::Vector3d& w_a = result.nearest_points[0];
-        const Eigen::Vector3d& w_b = result.nearest_points[1];
-        const Eigen::Vector3d gap =
-            d >= 0 ? Eigen::Vector3d(w_a - w_b) : Eigen::Vector3d(w_b - w_a);
-        const double length = gap.norm();
-        const Eigen::Vector3d n =
-            length > 1e-9 * a.bounding_radius ? Eigen::Vector3d(gap / length) : m;
-        out.push_back(contactAt(a, i, nullptr, -1, d, w_a, w_b, n));
-        continue;
-      }
-      const Eigen::Vector3d p = a.toWorld(support);
-      const double d = m.dot(p - tri.a);
-      if (d > margin) continue;
-      // The exact model: the foot may leave the triangle during the step, so a face whose
-      // foot is within the margin of it constrains too. Beyond a concave or flat edge the
-      // face's plane lies behind the bowl's surface, so it never holds a body off the surface
-      // there; without it, a body that slides or falls fast across the faces (0.25 m a step at
-      // 15 m/s) meets faces it had no contact with until the next detection. (The vertex
-      // models keep the paper-like rule: the foot on the triangle.)
-      const Eigen::Vector3d foot = p - d * m;
-      const bool exact = model == ContactModel::kExact;
-      if (outsideTriangle(foot, tri, m) > (exact ? margin : 0.0)) continue;
+    points.conservativeResize(3, count);
+    thread_local std::vector<fse::VertexContact<double>> found;
+    fse::verticesWithinMargin(*a.shape, X, points, margin, found, exact_options);
+    for (const fse::VertexContact<double>& v : found) {
       RigidContact c;
       c.a = i;
       c.b = -1;
-      c.distance = d;
-      c.n = m;
-      c.r_a = support;
-      c.r_b = foot;
-      c.follows_support = exact;
+      c.distance = v.distance;
+      c.n = -v.normal;
+      c.r_a = a.q.inverse() * (v.nearest_point - a.x);
+      c.r_b = points.col(v.index);
       out.push_back(c);
     }
+  }
+
+  /// The body against bowl triangle t, if it comes within the margin of its plane (it reaches
+  /// down to s − h(−m) along the face's outward normal m, h its support function). On a face,
+  /// the body's nearest point to the plane is its support point along −m: where that point lies
+  /// over the triangle it is the nearest point to the triangle too (the Halfspace pair's answer;
+  /// faces whose foot is near the triangle count too, below). Elsewhere the triangle's nearest
+  /// point is on its boundary: at a vertex (bowlVertexContacts), or at a convex edge (a rim),
+  /// where the library's superellipsoid–triangle pair answers (bowlRimContact). Across a flat or
+  /// concave edge, a face beside it or a vertex is at least as near.
+  void bowlFaceContact(const RigidBody& a, int i, const fcl::Transform3d& X, int t, double margin,
+                       std::vector<RigidContact>& out) const {
+    const fcl::TriangleP<double>& tri = triangles[std::size_t(t)];
+    const Eigen::Vector3d m = bowl->normals.col(t);
+    if (m.squaredNorm() == 0) return;
+    // A body's centre behind a face is on the solid's side of it: that face is the far side
+    // of a wall (the bowl's outside, seen from its cavity); the near side answers.
+    const double s = m.dot(a.x - tri.a);
+    if (s < 0 || s - a.bounding_radius > margin) return;
+    const Eigen::Vector3d m_body = a.q.inverse() * m;
+    // An upper bound of the body's support without a power: its bounding box's, Σ aᵢ|mᵢ|, and
+    // where both exponents are ≥ 1 (the shape inside its ellipsoid) the ellipsoid's, ‖(aᵢ·mᵢ)‖.
+    const bool pointy = a.shape->eps1() >= 1 && a.shape->eps2() >= 1;
+    const double bound = pointy ? a.shape->radii().cwiseProduct(m_body).norm()
+                                : a.shape->radii().dot(m_body.cwiseAbs());
+    if (s - bound > margin) return;
+    const Eigen::Vector3d support = a.shape->supportPoint(-m_body);  // body frame
+    const double h = -m_body.dot(support);
+    if (s - h > margin) return;
+    if (bowl->convex_edge[std::size_t(t)]) {
+      bowlRimContact(a, i, X, tri, m, margin, out);
+      return;
+    }
+    const Eigen::Vector3d p = a.toWorld(support);
+    const double d = m.dot(p - tri.a);
+    if (d > margin) return;
+    // The exact model: the foot may leave the triangle during the step, so a face whose foot
+    // is within the margin of it constrains too. Beyond a concave or flat edge the face's plane
+    // lies behind the bowl's surface, so it never holds a body off the surface there; without
+    // it, a body that slides or falls fast across the faces meets faces it had no contact with
+    // until the next detection. (The vertex models keep the paper-like rule: the foot on the
+    // triangle.)
+    const Eigen::Vector3d foot = p - d * m;
+    const bool exact = model == ContactModel::kExact;
+    if (outsideTriangle(foot, tri, m) > (exact ? margin : 0.0)) return;
+    RigidContact c;
+    c.a = i;
+    c.b = -1;
+    c.distance = d;
+    c.n = m;
+    c.r_a = support;
+    c.r_b = foot;
+    c.follows_support = exact;
+    out.push_back(c);
+  }
+
+  /// The body against a triangle with a convex edge (face normal m), through the library's
+  /// superellipsoid–triangle pair. At a rim the triangle's nearest point may be on an edge,
+  /// where it has no normal: a separates along the witnesses' difference (apart: w_a − w_b;
+  /// overlapping, the witnesses are the support points along the separating direction:
+  /// w_b − w_a), or along the face's normal where they coincide.
+  void bowlRimContact(const RigidBody& a, int i, const fcl::Transform3d& X,
+                      const fcl::TriangleP<double>& tri, const Eigen::Vector3d& m, double margin,
+                      std::vector<RigidContact>& out) const {
+    fcl::DistanceRequestd request;
+    request.enable_nearest_points = true;
+    request.enable_signed_distance = true;
+    fcl::DistanceResultd result;
+    const double d =
+        fse::distance(a.shape.get(), X, &tri, fcl::Transform3d::Identity(), request, result);
+    if (!(d <= margin)) return;
+    const Eigen::Vector3d& w_a = result.nearest_points[0];
+    const Eigen::Vector3d& w_b = result.nearest_points[1];
+    const Eigen::Vector3d gap = d >= 0 ? Eigen::Vector3d(w_a - w_b) : Eigen::Vector3d(w_b - w_a);
+    const double length = gap.norm();
+    const Eigen::Vector3d n = length > 1e-9 * a.bounding_radius ? Eigen::Vector3d(gap / length) : m;
+    out.push_back(contactAt(a, i, nullptr, -1, d, w_a, w_b, n));
   }
 
   /// The contacts of one step for `pair_model`; `measuring`: the exact pair's contact only,

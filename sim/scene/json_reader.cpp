@@ -1,8 +1,13 @@
 #include "scene/json_reader.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 namespace fse_sim {
 namespace {
@@ -27,6 +32,79 @@ std::string formatNumber(double value) {
 }
 
 }  // namespace
+
+namespace {
+
+/// One open object or array while scanning, and what its members were.
+struct Frame {
+  bool object = false;
+  std::string path;
+  std::map<std::string, long> key_lines;  // objects: each key's line
+  std::size_t index = 0;                  // arrays: the element being read
+  std::string key;                        // objects: the member being read
+};
+
+/// The JSON string literal at text[at] (at its opening quote), decoded, and the index past it.
+std::pair<std::string, std::size_t> stringAt(const std::string& text, std::size_t at) {
+  std::size_t end = at + 1;
+  while (end < text.size() && text[end] != '"') end += text[end] == '\\' ? 2 : 1;
+  const std::string literal = text.substr(at, end + 1 - at);
+  return {nlohmann::json::parse(literal).get<std::string>(), end + 1};
+}
+
+}  // namespace
+
+void refuseDuplicateKeys(const std::string& text) {
+  std::vector<Frame> open;
+  long line = 1;
+  // The path of the value that starts next: in an object, its key's; in an array, its index's.
+  auto valuePath = [&]() -> std::string {
+    if (open.empty()) return "";
+    const Frame& f = open.back();
+    return f.object ? childPath(f.path, f.key) : childPath(f.path, f.index);
+  };
+  for (std::size_t i = 0; i < text.size();) {
+    const char c = text[i];
+    if (c == '\n') ++line;
+    if (c == '{' || c == '[') {
+      Frame frame;
+      frame.object = c == '{';
+      frame.path = valuePath();
+      open.push_back(std::move(frame));
+      ++i;
+    } else if (c == '}' || c == ']') {
+      open.pop_back();
+      ++i;
+    } else if (c == ',') {
+      if (!open.empty() && !open.back().object) ++open.back().index;
+      ++i;
+    } else if (c == '"') {
+      auto [value, next] = stringAt(text, i);
+      line += std::count(text.begin() + long(i), text.begin() + long(next), '\n');
+      const long key_line = line;
+      std::size_t after = next;
+      while (after < text.size() && std::isspace(static_cast<unsigned char>(text[after]))) {
+        if (text[after] == '\n') ++line;
+        ++after;
+      }
+      if (!open.empty() && open.back().object && after < text.size() && text[after] == ':') {
+        Frame& f = open.back();
+        const auto [seen, inserted] = f.key_lines.emplace(value, key_line);
+        if (!inserted) {
+          throw SceneError(
+              childPath(f.path, value) + ": the key is given twice in one object, on line " +
+              std::to_string(seen->second) + " and on line " + std::to_string(key_line));
+        }
+        f.key = value;
+        i = after + 1;
+      } else {
+        i = after;
+      }
+    } else {
+      ++i;
+    }
+  }
+}
 
 std::string childPath(const std::string& path, const std::string& key) {
   std::string escaped;

@@ -15,6 +15,11 @@
 
 namespace fse_sim {
 
+/// Refuses a key given twice in one object of `text` (JSON that parses: nlohmann keeps the last
+/// one silently, and JSON leaves duplicate names undefined).
+/// @throws SceneError naming the key by its JSON Pointer and the lines of both.
+void refuseDuplicateKeys(const std::string& text);
+
 /// The path of member `key` of the object at `path`, JSON Pointer escaping applied.
 std::string childPath(const std::string& path, const std::string& key);
 std::string childPath(const std::string& path, std::size_t index);

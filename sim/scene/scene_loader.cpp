@@ -293,6 +293,12 @@ void readRigidBodies(ObjectReader& root, Scene& scene) {
                "between 1 and " + std::to_string(kMaxRigidBodies) +
                    " bodies (listed under \"bodies\" and generated)",
                double(total));
+  // Every body keeps its tessellation: the loader refuses what the run could not hold.
+  requireRange(double(total) * spec.mesh_vertices <= double(kMaxBodyMeshVertices),
+               r.pathOf("mesh_vertices"),
+               "at most " + std::to_string(kMaxBodyMeshVertices) + " vertices for all " +
+                   std::to_string(total) + " bodies' tessellations together",
+               spec.mesh_vertices);
   checkBodiesApart(spec, r.path());
 }
 
@@ -336,6 +342,11 @@ void readBowl(ObjectReader& root, Scene& scene, const std::string& directory) {
     bowl.segments = r.integer("segments", bowl.segments);
     requireRange(bowl.segments >= 3 && bowl.segments <= 10000, r.pathOf("segments"),
                  "in [3, 10000]", bowl.segments);
+    const long vertices = 2 * (1 + long(bowl.rings) * long(bowl.segments));
+    requireRange(vertices <= kMaxBowlVertices, r.pathOf("segments"),
+                 "rings × segments of at most " + std::to_string(kMaxBowlVertices) +
+                     " vertices in all (2·(1 + rings·segments))",
+                 bowl.segments);
   }
   r.finish();
 }
@@ -484,6 +495,7 @@ Scene parseSceneIn(const std::string& text, const std::string& source,
                      " is not a finite number");
   }
   try {
+    refuseDuplicateKeys(text);
     Scene scene;
     ObjectReader root(document, "");
     scene.name = root.string("name", "");
@@ -501,6 +513,7 @@ Scene parseSceneIn(const std::string& text, const std::string& source,
     }
     readEffectBlocks(root, scene);
     root.finish();
+    checkSteps(scene.time, "/time/duration");
     return scene;
   } catch (const SceneError& e) {
     throw SceneError(source + ": " + e.what());
@@ -508,6 +521,17 @@ Scene parseSceneIn(const std::string& text, const std::string& source,
 }
 
 }  // namespace
+
+void checkSteps(const TimeSpec& time, const std::string& where) {
+  const double steps = time.duration / time.step;
+  if (!(steps <= kMaxSteps)) {
+    std::ostringstream message;
+    message << where << ": " << time.duration << " s at a step of " << time.step << " s is "
+            << steps << " steps; a run takes at most " << kMaxSteps
+            << " (it keeps a record of every step): shorten the duration or lengthen the step";
+    throw SceneError(message.str());
+  }
+}
 
 Scene parseScene(const std::string& text, const std::string& source) {
   return parseSceneIn(text, source, "");

@@ -16,10 +16,23 @@ namespace fse_sim {
 constexpr long kMaxClothVertices = 10000000;
 /// Most rigid bodies a scene may have.
 constexpr int kMaxRigidBodies = 2000;
+/// Most steps a run may take (duration / step): the run keeps a record of every step (about a
+/// tenth of a kilobyte) for its files.
+constexpr double kMaxSteps = 1e7;
+/// Most vertices of the bodies' tessellations together (bodies × rigid_bodies.mesh_vertices):
+/// each body keeps its tessellation, and the vertex and mesh models a world copy of it.
+constexpr long kMaxBodyMeshVertices = 10000000;
+/// Most vertices of a generated bowl (2·(1 + rings·segments)).
+constexpr long kMaxBowlVertices = 4000000;
 
 /// Parses scene text. `source` names it in messages (a file name).
 /// @throws SceneError for invalid JSON or an invalid scene.
 Scene parseScene(const std::string& text, const std::string& source);
+
+/// Refuses a run of more than kMaxSteps steps: the scene's duration over its step. `where`
+/// names the duration in the message ("/time/duration", or a command-line option that set it).
+/// @throws SceneError naming the steps and the limit.
+void checkSteps(const TimeSpec& time, const std::string& where);
 
 /// Reads and parses a scene file (files it names, such as a bowl's OBJ, are relative to it).
 /// @throws SceneError also if the file cannot be read.

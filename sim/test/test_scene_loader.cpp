@@ -287,6 +287,48 @@ TEST(SceneLoaderTest, MissingFile) {
   }
 }
 
+// JSON leaves a name given twice in one object undefined (nlohmann keeps the last): refused,
+// with the key's path and both lines, in the root and nested, and not across objects.
+TEST(SceneLoaderTest, KeyGivenTwiceIsRefusedWithBothLines) {
+  EXPECT_REFUSED(replaced(kValid, "\"duration\": 0.1}", "\"duration\": 0.1,\n  \"step\": 0.02}"),
+                 "/time/step", "given twice", "line 3", "line 4");
+  EXPECT_REFUSED(replaced(kValid, "\"collision\": {", "\"effects\": [],\n  \"collision\": {"),
+                 "/effects", "line 2", "line 7");
+  EXPECT_REFUSED(replaced(kValid, "[0.5, 0.5]}", "[0.5, 0.5], \"radii\": [2, 2, 2]}"),
+                 "/shapes/0/radii", "line 5", "given twice");
+  // The same key in two objects, and a key's name as a string value, are not duplicates.
+  const std::string two_bodies =
+      replaced(kRigid, "\"fixed\": false}]",
+               "\"fixed\": false}, {\"radii\": [0.3, 0.3, 0.3], \"exponents\": [1, 1], "
+               "\"position\": [5, 0, 2], \"fixed\": false}]");
+  EXPECT_EQ(parseScene(two_bodies, "test.json").rigid_bodies->bodies.size(), 2u);
+  parseScene(replaced(kValid, "\"effects\": [",
+                      "\"name\": \"time\", \"description\": \"\\\"step\\\": 1, \\\"step\\\": 2\", "
+                      "\"effects\": ["),
+             "test.json");
+}
+
+// What a scene makes the run hold is refused at load time, naming the limit: the steps
+// (duration / step: each is recorded), the bodies' tessellations, the bowl's vertices.
+TEST(SceneLoaderTest, RunsTooLargeToHoldAreRefusedAtLoadTime) {
+  EXPECT_REFUSED(replaced(kValid, "\"step\": 0.01, \"substeps\": 4, \"duration\": 0.1",
+                          "\"step\": 1e-300, \"substeps\": 4, \"duration\": 1e6"),
+                 "/time/duration", "steps", "at most 1e+07");
+  EXPECT_REFUSED(replaced(kValid, "\"step\": 0.01, \"substeps\": 4, \"duration\": 0.1",
+                          "\"step\": 1e-5, \"substeps\": 4, \"duration\": 1000"),
+                 "/time/duration", "1e+08 steps");
+  // At the limit: 1e7 steps exactly.
+  parseScene(replaced(kValid, "\"step\": 0.01, \"substeps\": 4, \"duration\": 0.1",
+                      "\"step\": 0.0625, \"substeps\": 4, \"duration\": 625000"),
+             "test.json");
+  EXPECT_REFUSED(replaced(replaced(kRigid, "\"mesh_vertices\": 100", "\"mesh_vertices\": 100000"),
+                          "\"count\": 3", "\"count\": 200"),
+                 "/rigid_bodies/mesh_vertices", "10000000 vertices", "201 bodies");
+  EXPECT_REFUSED(
+      replaced(kRigid, "\"rings\": 5, \"segments\": 12", "\"rings\": 1000, \"segments\": 10000"),
+      "/bowl/segments", "4000000 vertices");
+}
+
 // The runner itself: a bad scene exits non-zero and writes nothing.
 TEST(SceneLoaderTest, RunnerRefusesABadSceneAndWritesNothing) {
   const auto dir = std::filesystem::temp_directory_path() / "fse_sim_bad_scene_test";
@@ -304,6 +346,35 @@ TEST(SceneLoaderTest, RunnerRefusesABadSceneAndWritesNothing) {
   std::ifstream err(dir / "stderr.txt");
   const std::string message((std::istreambuf_iterator<char>(err)), {});
   EXPECT_NE(message.find("/time/step"), std::string::npos) << message;
+  std::filesystem::remove_all(dir);
+}
+
+// The same for a run too long to record, set by the scene or by --duration: exit 2, the limit
+// named, nothing written (the output folder is not even created).
+TEST(SceneLoaderTest, RunnerRefusesARunTooLongAndWritesNothing) {
+  const auto dir = std::filesystem::temp_directory_path() / "fse_sim_long_run_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto scene = dir / "long.json";
+  std::ofstream(scene) << replaced(kValid, "\"step\": 0.01, \"substeps\": 4, \"duration\": 0.1",
+                                   "\"step\": 1e-300, \"substeps\": 4, \"duration\": 1e6");
+  const auto good = dir / "good.json";
+  std::ofstream(good) << kValid;
+  for (const auto& [file, extra, part] :
+       std::vector<std::array<std::string, 3>>{{scene.string(), "", "/time/duration"},
+                                               {good.string(), " --duration 1e6", "--duration"}}) {
+    const auto out = dir / "out";
+    const std::string command = std::string(FSE_SIM_BINARY) + " " + file + extra + " --out " +
+                                out.string() + " 2>" + (dir / "stderr.txt").string();
+    const int status = std::system(command.c_str());
+    EXPECT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 2) << command;
+    EXPECT_FALSE(std::filesystem::exists(out)) << command;
+    std::ifstream err(dir / "stderr.txt");
+    const std::string message((std::istreambuf_iterator<char>(err)), {});
+    EXPECT_NE(message.find(part), std::string::npos) << message;
+    EXPECT_NE(message.find("at most 1e+07"), std::string::npos) << message;
+  }
   std::filesystem::remove_all(dir);
 }
 

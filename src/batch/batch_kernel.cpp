@@ -21,6 +21,7 @@
 #include <hwy/highway.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -698,77 +699,136 @@ hn::Mask<D> CertifiedLanes(D d, const LaneProblem<hn::TFromD<D>>& problem, const
   return hn::Gt(hn::LoadU(d, lane[11]), hn::Zero(d));
 }
 
-/// The inside pass on one vector of lanes at i.
+/// The lanes the inside pass solves: inside, not deep (g ≥ kDeepGauge: the scalar solver's
+/// candidates at the centre), and off the coordinate planes (the scalar solver's tilted
+/// starts).
 template <class D>
-void SolveInsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
-                       const LaneArrays<hn::TFromD<D>>& lanes, std::size_t i) {
+hn::Mask<D> InsideWork(D d, const LaneProblem<hn::TFromD<D>>& problem, const Vec3<D>& y,
+                       hn::Vec<D> gauge) {
   using T = hn::TFromD<D>;
-  using V = hn::Vec<D>;
-  using M = hn::Mask<D>;
-  const V zero = hn::Zero(d), one = hn::Set(d, 1);
-  const Vec3<D> y = LoadVec3(d, lanes.query, i);
-  LaneSolver<D> solver(d, problem, y, T(-1));
-  V gauge;
-  const Candidate<D> radial = RadialStart(d, solver, y, lanes, i, &gauge);
-
-  // What only the scalar solver does: deep inside (g < 0.5: the centre's candidates), and on
-  // or near a coordinate plane (tilted starts).
-  const V near_plane = hn::Set(d, rules::nearPlaneFraction<T>());
-  M work = hn::And(hn::Lt(gauge, one), hn::Ge(gauge, hn::Set(d, T(rules::kDeepGauge))));
+  const hn::Vec<D> near_plane = hn::Set(d, rules::nearPlaneFraction<T>());
+  hn::Mask<D> work =
+      hn::And(hn::Lt(gauge, hn::Set(d, 1)), hn::Ge(gauge, hn::Set(d, T(rules::kDeepGauge))));
   work = hn::And(work, hn::Gt(y.x, hn::Mul(near_plane, hn::Set(d, problem.radii[0]))));
   work = hn::And(work, hn::Gt(y.y, hn::Mul(near_plane, hn::Set(d, problem.radii[1]))));
   work = hn::And(work, hn::Gt(y.z, hn::Mul(near_plane, hn::Set(d, problem.radii[2]))));
+  return work;
+}
+
+/// The certificate of the lanes' answers as global (exact_rules::certifiedGlobal): the rolling
+/// ball lane-wise (d + tolerance ≤ the rolling radius), else the Hessian ball and the direction
+/// cover (ball_certificate.h) lane by lane through the scalar solver's own functions, each
+/// lane's cover attempts and split budget kept across its candidates.
+template <class D>
+class InsideCertificate {
+ public:
+  using T = hn::TFromD<D>;
+  InsideCertificate(D d, const LaneProblem<T>& problem, const LaneSolver<D>& solver,
+                    const Vec3<D>& y)
+      : d_(d), problem_(problem), solver_(solver), y_(y) {
+    std::fill(split_budgets_, split_budgets_ + kMaxLanes, DirectionCover<T>::kSplitSupportPoints);
+  }
+
+  /// The lanes whose candidate c is certified; `fresh`: the lanes whose candidate is new since
+  /// the last check (the balls are tested once per candidate, as in ExactSolver::searchInside).
+  hn::Mask<D> operator()(const Candidate<D>& c, hn::Mask<D> converged, hn::Mask<D> fresh) {
+    const Vec3<D> to_c = Minus(y_, c.point);
+    const hn::Vec<D> distance = hn::Sqrt(Dot(to_c, to_c));
+    const hn::Vec<D> reach = hn::Add(distance, solver_.tolerance());
+    const hn::Mask<D> rolling =
+        hn::And(converged, hn::Le(reach, hn::Set(d_, problem_.rolling_radius)));
+    const hn::Mask<D> open = hn::And(fresh, hn::AndNot(rolling, converged));
+    if (hn::AllFalse(d_, open)) return rolling;
+    return hn::Or(rolling, hn::And(open, CertifiedLanes(d_, problem_, y_, c, distance, open,
+                                                        cover_attempts_, split_budgets_)));
+  }
+
+ private:
+  D d_;
+  const LaneProblem<T>& problem_;
+  const LaneSolver<D>& solver_;
+  const Vec3<D> y_;
+  int cover_attempts_[kMaxLanes] = {};
+  int split_budgets_[kMaxLanes];
+};
+
+/// The three axis projections (ExactSolver::axisProjections): one coordinate of Q moved outward
+/// until G = 1, in the primal's scaled coordinates u = y/a.
+template <class D>
+std::array<Vec3<D>, 3> AxisProjections(D d, const LaneProblem<hn::TFromD<D>>& problem,
+                                       const Vec3<D>& y) {
+  using V = hn::Vec<D>;
+  const V zero = hn::Zero(d), one = hn::Set(d, 1);
+  const NestedNorm<hn::TFromD<D>>& g = problem.primal;
+  const V s0 = hn::Set(d, g.scale[0]), s1 = hn::Set(d, g.scale[1]), s2 = hn::Set(d, g.scale[2]);
+  const V p1 = hn::Set(d, g.p1), p2 = hn::Set(d, g.p2);
+  const V inv_p1 = hn::Set(d, g.inv_p1), inv_p2 = hn::Set(d, g.inv_p2);
+  auto complement = [&](V t, V p, V inv_p) {  // s with ‖(t, s)‖_p = 1, t ≤ 1
+    return Pow(d, hn::Max(zero, hn::Sub(one, Pow(d, t, p))), inv_p);
+  };
+  const V u0 = hn::Mul(y.x, s0), u1 = hn::Mul(y.y, s1), u2 = hn::Mul(y.z, s2);
+  const V r = PNorm2WithPowers(d, u0, u1, p1, inv_p1, hn::Sub(p1, one)).norm;
+  const V r_target = complement(u2, p2, inv_p2);
+  const V safe_target = hn::IfThenElse(hn::Gt(r_target, zero), r_target, one);
+  auto move = [&](V other, V own) {
+    return hn::IfThenElse(hn::Lt(other, r_target),
+                          hn::Mul(r_target, complement(hn::Div(other, safe_target), p1, inv_p1)),
+                          own);
+  };
+  return {Vec3<D>{hn::Div(move(u1, u0), s0), y.y, y.z},
+          Vec3<D>{y.x, hn::Div(move(u0, u1), s1), y.z},
+          Vec3<D>{y.x, y.y, hn::Div(complement(hn::Min(r, one), p2, inv_p2), s2)}};
+}
+
+/// The lanes whose answer the inside pass keeps: converged, and neither deep in an elongated
+/// shape (farther than a quarter of a cross-section's smaller radius: the scalar solver adds
+/// the cross-sections' diagonal starts there) unless certified, nor at the caller's iteration
+/// cap (the scalar solver counts its second-order corrections as iterations,
+/// exact_rules::kStepTrials, so under a tight cap it may stop where the lane, certified after
+/// fewer iterations, would have answered).
+template <class D>
+hn::Mask<D> InsideSolved(D d, const LaneProblem<hn::TFromD<D>>& problem,
+                         const LaneSolver<D>& solver, const Vec3<D>& y, const Candidate<D>& best,
+                         hn::Mask<D> done, hn::Mask<D> work, hn::Mask<D> all_converged) {
+  using T = hn::TFromD<D>;
+  const Vec3<D> to_best = Minus(y, best.point);
+  const hn::Vec<D> best_distance = hn::Sqrt(Dot(to_best, to_best));
+  // (of every cross-section's radii: the smallest radius is a lower bound on all of them)
+  const T quarter_min = T(rules::kDiagonalStartDepth) *
+                        std::min({problem.radii[0], problem.radii[1], problem.radii[2]});
+  const hn::Mask<D> deep = hn::AndNot(done, hn::Gt(best_distance, hn::Set(d, quarter_min)));
+  const hn::Mask<D> over_budget =
+      hn::Ge(solver.iterations(), hn::Set(d, T(problem.max_iterations)));
+  return hn::AndNot(hn::Or(deep, over_budget), hn::And(work, all_converged));
+}
+
+/// The inside pass on one vector of lanes at i: the radial start, then, on the lanes no
+/// certificate settled, the three axis projections, each answer kept where it is nearer;
+/// what the lanes do not settle goes back to the scalar solver.
+template <class D>
+void SolveInsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
+                       const LaneArrays<hn::TFromD<D>>& lanes, std::size_t i) {
+  using M = hn::Mask<D>;
+  const Vec3<D> y = LoadVec3(d, lanes.query, i);
+  LaneSolver<D> solver(d, problem, y, hn::TFromD<D>(-1));
+  hn::Vec<D> gauge;
+  const Candidate<D> radial = RadialStart(d, solver, y, lanes, i, &gauge);
+  const M none = hn::MaskFromVec(hn::Zero(d));
+  const M work = InsideWork(d, problem, y, gauge);
   if (hn::AllFalse(d, work)) {
-    StoreAnswer(d, radial, hn::MaskFromVec(zero), hn::MaskFromVec(zero), lanes, i);
+    StoreAnswer(d, radial, none, none, lanes, i);
     return;
   }
 
   M all_converged;
   Candidate<D> best = solver.refine(radial, work, &all_converged);
-  // Lanes whose answer is already certified global need no further start: the rolling ball
-  // (exact_rules::certifiedGlobal, lane-wise: d + tolerance ≤ the rolling radius), else the
-  // Hessian ball and the direction cover (ball_certificate.h), lane by lane through the scalar
-  // solver's own functions. `fresh`: the lanes whose candidate is new since the last check (the
-  // balls are tested once per candidate, as in ExactSolver::searchInside).
-  int cover_attempts[kMaxLanes] = {};
-  int split_budgets[kMaxLanes];
-  std::fill(split_budgets, split_budgets + kMaxLanes, DirectionCover<T>::kSplitSupportPoints);
-  const auto certified = [&](const Candidate<D>& c, M converged, M fresh) {
-    const Vec3<D> to_c = Minus(y, c.point);
-    const V distance = hn::Sqrt(Dot(to_c, to_c));
-    const V reach = hn::Add(distance, solver.tolerance());
-    const M rolling = hn::And(converged, hn::Le(reach, hn::Set(d, problem.rolling_radius)));
-    const M open = hn::And(fresh, hn::AndNot(rolling, converged));
-    if (hn::AllFalse(d, open)) return rolling;
-    return hn::Or(rolling, hn::And(open, CertifiedLanes(d, problem, y, c, distance, open,
-                                                        cover_attempts, split_budgets)));
-  };
+  InsideCertificate<D> certified(d, problem, solver, y);
   M done = certified(best, all_converged, work);
   M more = hn::AndNot(done, work);
-  // The three axis projections (ExactSolver::axisProjections): move one coordinate of Q
-  // outward until G = 1, in the primal's scaled coordinates u = y/a. (Their powers only where a
-  // lane still needs them: the first start is certified on most shallow lanes.)
+  // (The projections' powers only where a lane still needs them: the first start is certified
+  // on most shallow lanes.)
   if (!hn::AllFalse(d, more)) {
-    const NestedNorm<T>& g = problem.primal;
-    const V s0 = hn::Set(d, g.scale[0]), s1 = hn::Set(d, g.scale[1]), s2 = hn::Set(d, g.scale[2]);
-    const V p1 = hn::Set(d, g.p1), p2 = hn::Set(d, g.p2);
-    const V inv_p1 = hn::Set(d, g.inv_p1), inv_p2 = hn::Set(d, g.inv_p2);
-    auto complement = [&](V t, V p, V inv_p) {  // s with ‖(t, s)‖_p = 1, t ≤ 1
-      return Pow(d, hn::Max(zero, hn::Sub(one, Pow(d, t, p))), inv_p);
-    };
-    const V u0 = hn::Mul(y.x, s0), u1 = hn::Mul(y.y, s1), u2 = hn::Mul(y.z, s2);
-    const V r = PNorm2WithPowers(d, u0, u1, p1, inv_p1, hn::Sub(p1, one)).norm;
-    const V r_target = complement(u2, p2, inv_p2);
-    const V safe_target = hn::IfThenElse(hn::Gt(r_target, zero), r_target, one);
-    auto move = [&](V other, V own) {
-      return hn::IfThenElse(hn::Lt(other, r_target),
-                            hn::Mul(r_target, complement(hn::Div(other, safe_target), p1, inv_p1)),
-                            own);
-    };
-    const Vec3<D> starts[3] = {{hn::Div(move(u1, u0), s0), y.y, y.z},
-                               {y.x, hn::Div(move(u0, u1), s1), y.z},
-                               {y.x, y.y, hn::Div(complement(hn::Min(r, one), p2, inv_p2), s2)}};
-    for (const Vec3<D>& start : starts) {
+    for (const Vec3<D>& start : AxisProjections(d, problem, y)) {
       if (hn::AllFalse(d, more)) break;
       M converged;
       const Candidate<D> c = solver.refine(solver.candidateOnRay(start), more, &converged);
@@ -782,21 +842,8 @@ void SolveInsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
       more = hn::AndNot(now_done, more);
     }
   }
-
-  // Deep in an elongated shape the scalar solver adds the cross-sections' diagonal starts:
-  // where the answer is farther than a quarter of a cross-section's smaller radius.
-  const Vec3<D> to_best = Minus(y, best.point);
-  const V best_distance = hn::Sqrt(Dot(to_best, to_best));
-  const T a0 = problem.radii[0], a1 = problem.radii[1], a2 = problem.radii[2];
-  // (of every cross-section's radii: the smallest radius is a lower bound on all of them)
-  const T quarter_min = T(rules::kDiagonalStartDepth) * std::min({a0, a1, a2});
-  const M deep = hn::AndNot(done, hn::Gt(best_distance, hn::Set(d, quarter_min)));
-  // A lane that reached the caller's cap goes back too: the scalar solver counts its second-order
-  // corrections as iterations (exact_rules::kStepTrials), so under a tight cap it may stop where
-  // the lane, certified after fewer iterations, would have answered.
-  const M over_budget = hn::Ge(solver.iterations(), hn::Set(d, T(problem.max_iterations)));
-  const M solved = hn::AndNot(hn::Or(deep, over_budget), hn::And(work, all_converged));
-  StoreAnswer(d, best, solved, hn::MaskFromVec(zero), lanes, i);
+  StoreAnswer(d, best, InsideSolved(d, problem, solver, y, best, done, work, all_converged), none,
+              lanes, i);
 }
 
 /// The classifying pass on one vector of lanes at i: G(Q) < 1, and the gauge's evaluation at Q

@@ -250,94 +250,135 @@ constexpr int kGuessSteps = 10;
 /// the shape, proves an overlap: then nothing more is tried (the rim's Newton, finding no
 /// separating direction, would run long).
 template <typename S>
-std::optional<PairHit<S>> facingFeatures(const ShapePair<S>& pair, const Round<S>& b) {
-  const Vector3<S> w = (pair.X_WS->translation() - b.t).normalized();
-  if (!w.allFinite()) return std::nullopt;
-  auto support = [&b](const Vector3<S>& x) { return b.support(x); };
-  Candidates<S, decltype(support)> candidates(pair, support, std::hypot(b.r, b.h));
-  auto inside = [&b](const PairHit<S>& hit) { return b.outside(hit.on_shape) <= S(0); };
-  // The end whose outward normal side·z points towards the shape; the cone's base, its only
-  // end, wherever the shape is (a shape above the base's plane can still touch its rim).
-  const S side = b.cone || w.dot(b.z) < S(0) ? S(-1) : S(1);
-  // A cone's base faces away from a shape above its plane: there it is tried only where the
-  // side's search settled past the base (an overlap would otherwise spend the rim's guesses).
-  bool past_base = false;
-  auto base_faces = [&] { return !(b.cone && w.dot(b.z) > S(0)) || past_base; };
-  const S theta0 = std::atan2(w.dot(b.e2), w.dot(b.e1));
-  enum class Tried { kCertified, kOverlap, kNot };
-  auto end = [&] {
-    if (!base_faces()) return Tried::kNot;
-    const PairHit<S> hit = endCandidate(pair, b, side);
-    if (inside(hit)) return Tried::kOverlap;
-    return onEnd(b, hit) && candidates.offer(hit) ? Tried::kCertified : Tried::kNot;
+class FacingFeatures {
+ public:
+  /// `w`: the unit direction from B's centre towards the shape's.
+  FacingFeatures(const ShapePair<S>& pair, const Round<S>& b, const Vector3<S>& w)
+      : pair_(pair),
+        b_(b),
+        w_(w),
+        candidates_(pair, Support{&b}, std::hypot(b.r, b.h)),
+        // The end whose outward normal side·z points towards the shape; the cone's base, its
+        // only end, wherever the shape is (a shape above the base's plane can still touch its
+        // rim).
+        side_(b.cone || w.dot(b.z) < S(0) ? S(-1) : S(1)),
+        theta0_(std::atan2(w.dot(b.e2), w.dot(b.e1))) {}
+
+  std::optional<PairHit<S>> run() {
+    std::array<Feature, 4> order = firstOrder();
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      const Feature feature = order[k];
+      const Tried t = feature == kEnd    ? end()
+                      : feature == kSide ? lateral()
+                      : feature == kRim  ? rim()
+                                         : apex();
+      if (t == Tried::kCertified) return candidates_.certified();
+      if (t == Tried::kOverlap) return std::nullopt;
+      // The cone's side failed first: the apex next if it lies nearer the shape than the base
+      // rim.
+      if (k == 0 && feature == kSide && b_.cone && apexNearer(pair_, b_, theta0_)) {
+        order = {kSide, kApex, kEnd, kRim};
+      }
+    }
+    return std::nullopt;
+  }
+
+ private:
+  struct Support {
+    const Round<S>* b;
+    S operator()(const Vector3<S>& x) const { return b->support(x); }
   };
-  auto lateral = [&] {
+  enum class Tried { kCertified, kOverlap, kNot };
+  enum Feature { kEnd, kSide, kRim, kApex };
+
+  /// The order w suggests: the apex first where it supports B along w; the side first where
+  /// w's axial part is nearer the side normal's (at w's angle) than the ends'; else the end and
+  /// its rim.
+  std::array<Feature, 4> firstOrder() const {
+    const S side_z = b_.sideNormal(theta0_).dot(b_.z);  // 0 for the cylinder
+    const S wz = w_.dot(b_.z);
+    const bool side_first =
+        wz > S(0.5) * (side_z - S(1)) && (b_.cone || wz < S(0.5) * (side_z + S(1)));
+    if (b_.apexSupports(w_)) return {kApex, kSide, kEnd, kRim};
+    if (side_first) return {kSide, kEnd, kRim, kApex};
+    return {kEnd, kRim, kSide, kApex};
+  }
+
+  bool inside(const PairHit<S>& hit) const { return b_.outside(hit.on_shape) <= S(0); }
+  /// A cone's base faces away from a shape above its plane: there it is tried only where the
+  /// side's search settled past the base (an overlap would otherwise spend the rim's guesses).
+  bool baseFaces() const { return !(b_.cone && w_.dot(b_.z) > S(0)) || past_base_; }
+
+  /// The flat end facing the shape.
+  Tried end() {
+    if (!baseFaces()) return Tried::kNot;
+    const PairHit<S> hit = endCandidate(pair_, b_, side_);
+    if (inside(hit)) return Tried::kOverlap;
+    return onEnd(b_, hit) && candidates_.offer(hit) ? Tried::kCertified : Tried::kNot;
+  }
+
+  /// The side: the cone's by the search over its normals from w's angle, the cylinder's as its
+  /// axis against the shape (feature_newton.h), moved out by r.
+  Tried lateral() {
     std::optional<PairHit<S>> hit;
-    if (b.cone) {
-      hit = sideNewton(pair, b, theta0, past_base);
+    if (b_.cone) {
+      hit = sideNewton(pair_, b_, theta0_, past_base_);
     } else if (const std::optional<PairHit<S>> axis =
-                   segmentInteriorApart(*pair.shape, *pair.X_WS, Vector3<S>(b.t - b.h * b.z),
-                                        Vector3<S>(b.t + b.h * b.z), Vector3<S>(-w))) {
-      hit = PairHit<S>{axis->distance - b.r, Vector3<S>(axis->on_other - b.r * axis->normal),
+                   segmentInteriorApart(*pair_.shape, *pair_.X_WS, Vector3<S>(b_.t - b_.h * b_.z),
+                                        Vector3<S>(b_.t + b_.h * b_.z), Vector3<S>(-w_))) {
+      hit = PairHit<S>{axis->distance - b_.r, Vector3<S>(axis->on_other - b_.r * axis->normal),
                        axis->on_shape, axis->normal, -1};
     }
     if (!hit) return Tried::kNot;
     if (inside(*hit)) return Tried::kOverlap;
-    return candidates.offer(*hit) ? Tried::kCertified : Tried::kNot;
-  };
-  auto rim = [&] {
-    if (!base_faces()) return Tried::kNot;
-    const Vector3<S> centre = b.t + side * b.h * b.z;
-    const fcl::Transform3<S> X_SW = pair.X_WS->inverse(Eigen::Isometry);
-    if (pair.shape->contains(Vector3<S>(X_SW * b.rimPoint(side, theta0)))) return Tried::kOverlap;
-    // From the middle of the rim's normals at θ0 (between the end's and the side's); given up
-    // after kGuessSteps steps without a separating direction (F < 0), or at one along which the
-    // cone's apex, not the disc, supports B (the disc's answer there is not the cone's), else
-    // run to its end, so the answer is as exact as the other features'.
-    const Vector3<S> normal = side * b.z + b.sideNormal(theta0);
+    return candidates_.offer(*hit) ? Tried::kCertified : Tried::kNot;
+  }
+
+  /// The facing end's rim: Newton on its disc from the middle of the rim's normals at θ0
+  /// (between the end's and the side's); given up after kGuessSteps steps without a separating
+  /// direction (F < 0), or at one along which the cone's apex, not the disc, supports B (the
+  /// disc's answer there is not the cone's), else run to its end, so the answer is as exact as
+  /// the other features'.
+  Tried rim() {
+    if (!baseFaces()) return Tried::kNot;
+    const Vector3<S> centre = b_.t + side_ * b_.h * b_.z;
+    const fcl::Transform3<S> X_SW = pair_.X_WS->inverse(Eigen::Isometry);
+    if (pair_.shape->contains(Vector3<S>(X_SW * b_.rimPoint(side_, theta0_)))) {
+      return Tried::kOverlap;
+    }
+    const Vector3<S> normal = side_ * b_.z + b_.sideNormal(theta0_);
     int steps = 0;
     auto hopeless = [&](const Probe<S>& p) {
-      return ++steps >= kGuessSteps && (!(p.f < S(0)) || b.apexSupports(Vector3<S>(-p.v)));
+      return ++steps >= kGuessSteps && (!(p.f < S(0)) || b_.apexSupports(Vector3<S>(-p.v)));
     };
     const std::optional<PairHit<S>> hit =
-        discApart(*pair.shape, *pair.X_WS, centre, b.z, b.r, Vector3<S>(-normal), hopeless);
-    return hit && candidates.offer(*hit) ? Tried::kCertified : Tried::kNot;
-  };
-  auto apex = [&] {
-    if (!b.cone) return Tried::kNot;
+        discApart(*pair_.shape, *pair_.X_WS, centre, b_.z, b_.r, Vector3<S>(-normal), hopeless);
+    return hit && candidates_.offer(*hit) ? Tried::kCertified : Tried::kNot;
+  }
+
+  /// The cone's apex, by the point solver (cold).
+  Tried apex() {
+    if (!b_.cone) return Tried::kNot;
     const std::optional<PairHit<S>> hit =
-        pointApart(*pair.shape, *pair.X_WS, Vector3<S>(b.t + b.h * b.z), noHint<S>());
+        pointApart(*pair_.shape, *pair_.X_WS, Vector3<S>(b_.t + b_.h * b_.z), noHint<S>());
     if (hit && !(hit->distance > S(0))) return Tried::kOverlap;
-    return hit && candidates.offer(*hit) ? Tried::kCertified : Tried::kNot;
-  };
-  // The order w suggests: the apex first where it supports B along w; the side first where
-  // w's axial part is nearer the side normal's (at w's angle) than the ends'; else the end and
-  // its rim.
-  const S side_z = b.sideNormal(theta0).dot(b.z);  // 0 for the cylinder
-  const S wz = w.dot(b.z);
-  const bool side_first =
-      wz > S(0.5) * (side_z - S(1)) && (b.cone || wz < S(0.5) * (side_z + S(1)));
-  enum Feature { kEnd, kSide, kRim, kApex };
-  std::array<Feature, 4> order = {kEnd, kRim, kSide, kApex};
-  if (b.apexSupports(w)) {
-    order = {kApex, kSide, kEnd, kRim};
-  } else if (side_first) {
-    order = {kSide, kEnd, kRim, kApex};
+    return hit && candidates_.offer(*hit) ? Tried::kCertified : Tried::kNot;
   }
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    const Feature feature = order[k];
-    const Tried t = feature == kEnd    ? end()
-                    : feature == kSide ? lateral()
-                    : feature == kRim  ? rim()
-                                       : apex();
-    if (t == Tried::kCertified) return candidates.certified();
-    if (t == Tried::kOverlap) return std::nullopt;
-    // The cone's side failed first: the apex next if it lies nearer the shape than the base rim.
-    if (k == 0 && feature == kSide && b.cone && apexNearer(pair, b, theta0)) {
-      order = {kSide, kApex, kEnd, kRim};
-    }
-  }
-  return std::nullopt;
+
+  const ShapePair<S>& pair_;
+  const Round<S>& b_;
+  const Vector3<S> w_;
+  Candidates<S, Support> candidates_;
+  const S side_;
+  const S theta0_;
+  bool past_base_ = false;  // the cone's side search settled past the base's plane
+};
+
+template <typename S>
+std::optional<PairHit<S>> facingFeatures(const ShapePair<S>& pair, const Round<S>& b) {
+  const Vector3<S> w = (pair.X_WS->translation() - b.t).normalized();
+  if (!w.allFinite()) return std::nullopt;
+  return FacingFeatures<S>(pair, b, w).run();
 }
 
 /// The exact answer for separated shapes, if a candidate among the features within `margin` of
@@ -465,134 +506,194 @@ void offerMeridians(const Round<S>& b, S side, S from, Depth& depth) {
   }
 }
 
-/// The rest of the overlap's candidates (endsAndSide's are in `depth`), from libccd's start.
+/// The rest of an overlap's candidates (endsAndSide's are in `depth`), from libccd's start, in
+/// stages (run()); each stops the search where the superellipsoid's balls certify the best so
+/// far (rolling_certificate.h).
+template <typename S, typename Depth>
+class RoundOverlap {
+ public:
+  RoundOverlap(const ShapePair<S>& pair, const Round<S>& b, const PairHit<S>& start, Depth& depth)
+      : pair_(pair),
+        b_(b),
+        start_(start),
+        depth_(depth),
+        tolerance_(overlapTolerance(*pair.shape, std::hypot(b.r, b.h))),
+        // Where MPR found the shapes overlapping by more than kNearTouching × size, F ≥ the
+        // depth > 0 everywhere; a piece's f_P equals F inside its region and only falls along a
+        // descent, so once f_P < 0 the descent has left the region for good, and its end cannot
+        // be F's minimum there.
+        depth_floor_(start.distance < -nearTouching(pair, std::hypot(b.r, b.h))
+                         ? S(0)
+                         : -std::numeric_limits<S>::infinity()),
+        apex_(b.t + b.h * b.z),
+        apex_map_(SupportMap<S>::ofPoint(apex_)) {
+    for (S side : {S(1), S(-1)}) {  // the rims: the cylinder's two, the cone's base
+      if (!(b.cone && side > S(0))) sides_.push_back(side);
+    }
+  }
+
+  PairHit<S> run() {
+    depth_.offerDirection(start_.normal);
+    if (certified()) return depth_.best();
+    const Vector3<S> early = depth_.best().normal;
+    if (!std::is_same_v<S, float> && descendFromBest(early)) return depth_.best();
+    const std::vector<typename Depth::Escape> escapes = offerRimPoints();
+    if (certified()) return depth_.best();
+    // In float the pattern search stays, as for the polytopes (docs/math.md).
+    if constexpr (std::is_same_v<S, float>) return depth_.refinedBest();
+    // The descent from the best is not repeated while the best is the one it started from.
+    const Vector3<S> best = depth_.best().normal;
+    const bool repeated = best == early;
+    if (descendRims(escapes, best, repeated) || descendApex(escapes, best, repeated)) {
+      return depth_.best();
+    }
+    if (certified()) return depth_.best();
+    meridiansNearTheAxis();
+    return depth_.best();
+  }
+
+ private:
+  /// The number of points on each rim whose escapes are offered.
+  static constexpr int kRimPoints = 12;
+
+  bool certified() const {
+    return depth_.certified([this](const Vector3<S>& x) { return b_.outside(x); }, tolerance_);
+  }
+  /// A descent's stop once it has left its piece's region for good (depth_floor_).
+  bool leftRegion(const Probe<S>& p) const { return p.f < depth_floor_; }
+  /// A rim's descent's stop: that, or within kNearAxis of the rim's axis (its kink).
+  bool nearAxis(const Probe<S>& p) const {
+    return leftRegion(p) || (p.v - p.v.dot(b_.z) * b_.z).norm() < S(kNearAxis);
+  }
+
+  /// A descent of `piece` (a rim of side `side`, or the apex: side 0) from `from`; true where
+  /// the balls certify the best so far. A rim's descent that ends outside the rim's region,
+  /// below the best F so far, may hide F's minimum in a second local minimum of f_P inside the
+  /// region, the first's mirror image across the side's normals, where the depth would come out
+  /// too deep (docs/math.md). Each such end is mirrored once.
+  template <typename Stop>
+  bool descend(const SupportMap<S>& piece, const Vector3<S>& from, int steps, Stop stop, S side) {
+    const Probe<S> end = depth_.offerDescent(piece, from, steps, stop);
+    if (certified()) return true;
+    if (side == S(0) || !std::isfinite(end.f) || b_.rimSupports(side, Vector3<S>(-end.v)) ||
+        !(end.f < -depth_.best().distance)) {
+      return false;
+    }
+    for (const Vector3<S>& v : mirrored_) {
+      if ((v - end.v).norm() < S(kNearAxis)) return false;
+    }
+    mirrored_.push_back(end.v);
+    depth_.offerDescent(piece, b_.mirroredAcrossTheSide(end.v), steps, stop);
+    return certified();
+  }
+  bool descendRim(S side, const Vector3<S>& from) {
+    return descend(
+        b_.rim(side), from, kRimSteps, [this](const Probe<S>& p) { return nearAxis(p); }, side);
+  }
+  bool descendApexFrom(const Vector3<S>& from) {
+    return descend(
+        apex_map_, from, kSphereNewtonIterations,
+        [this](const Probe<S>& p) { return leftRegion(p); }, S(0));
+  }
+
+  /// The descent from the best so far of the piece that supports B there: first, since where it
+  /// is certified the rims' point queries (a good part of an overlap's time) are not needed.
+  bool descendFromBest(const Vector3<S>& best) {
+    const Vector3<S> u = -best;  // B's supporting direction there
+    if (b_.cone && b_.apexSupports(u)) return descendApexFrom(best);
+    for (S side : sides_) {  // the rims that support B along u (both where u ⊥ z)
+      if (b_.rimSupports(side, u) && descendRim(side, best)) return true;
+    }
+    return false;
+  }
+
+  /// The escapes of kRimPoints points on each rim, and of the cone's apex (last).
+  std::vector<typename Depth::Escape> offerRimPoints() {
+    std::vector<Vector3<S>> points;
+    for (S side : sides_) {
+      for (int k = 0; k < kRimPoints; ++k) {
+        points.push_back(b_.rimPoint(side, S(2 * M_PI * k / kRimPoints)));
+      }
+    }
+    if (b_.cone) points.push_back(apex_);
+    return depth_.offerPoints(points);
+  }
+
+  /// Each rim's descents: from its deepest point and its two neighbours, from its lowest F if
+  /// that is elsewhere, from the best so far (`best`, unless `repeated`) where the rim supports
+  /// B there, and from halfway between the best and the rim's axis (the disc's direction
+  /// −side·z: the basin of a minimum nearer the axis than the best's). True once certified.
+  bool descendRims(const std::vector<typename Depth::Escape>& escapes, const Vector3<S>& best,
+                   bool repeated) {
+    const Vector3<S> u = -best;  // B's supporting direction there
+    for (std::size_t k = 0; k < sides_.size(); ++k) {
+      const S side = sides_[k];
+      const auto first = escapes.begin() + std::ptrdiff_t(k * kRimPoints),
+                 last = first + kRimPoints;
+      const int deepest = int(
+          std::min_element(first, last,
+                           [](const auto& x, const auto& y) { return x.distance < y.distance; }) -
+          first);
+      const int lowest = int(
+          std::min_element(first, last, [](const auto& x, const auto& y) { return x.f < y.f; }) -
+          first);
+      for (int i : {deepest, (deepest + 1) % kRimPoints, (deepest + kRimPoints - 1) % kRimPoints}) {
+        if (descendRim(side, first[i].direction)) return true;
+      }
+      if (std::abs(lowest - deepest) > 1 && std::abs(lowest - deepest) != kRimPoints - 1) {
+        if (descendRim(side, first[lowest].direction)) return true;
+      }
+      if (b_.rimSupports(side, u) && !repeated && descendRim(side, best)) return true;
+      const Vector3<S> now = depth_.best().normal;
+      if (b_.rimSupports(side, Vector3<S>(-now)) &&
+          descendRim(side, Vector3<S>(now - side * b_.z))) {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  /// The cone's apex: from its axis direction where the apex is inside the superellipsoid, and
+  /// from the best so far where the apex supports B there. True once certified.
+  bool descendApex(const std::vector<typename Depth::Escape>& escapes, const Vector3<S>& best,
+                   bool repeated) {
+    if (!b_.cone) return false;
+    if (escapes.back().distance < S(0) && descendApexFrom(Vector3<S>(-b_.z))) return true;
+    if (b_.apexSupports(Vector3<S>(-best)) && !repeated) {
+      depth_.offerDescent(apex_map_, best, kSphereNewtonIterations,
+                          [this](const Probe<S>& p) { return leftRegion(p); });
+    }
+    return false;
+  }
+
+  /// A best near a rim's axis (the disc's normal, or a descent's end near it) that the balls do
+  /// not certify: the rim's meridians (offerMeridians), then Newton from the best (without them a
+  /// rim's minimum beside the axis kink is missed: RimMinimaAroundTheAxisKink).
+  void meridiansNearTheAxis() {
+    for (S side : sides_) {
+      const Vector3<S> d = -side * b_.z;
+      if ((depth_.best().normal - d).norm() > S(kMeridianTrigger)) continue;
+      offerMeridians(b_, side, S(kNearAxis), depth_);
+      if (descendRim(side, depth_.best().normal)) break;
+    }
+  }
+
+  const ShapePair<S>& pair_;
+  const Round<S>& b_;
+  const PairHit<S>& start_;
+  Depth& depth_;
+  const S tolerance_;
+  const S depth_floor_;
+  const Vector3<S> apex_;
+  const SupportMap<S> apex_map_;
+  std::vector<S> sides_;
+  std::vector<Vector3<S>> mirrored_;  // the descents' ends mirrored so far
+};
+
 template <typename S, typename Depth>
 PairHit<S> overlap(const ShapePair<S>& pair, const Round<S>& b, const PairHit<S>& start,
                    Depth& depth) {
-  depth.offerDirection(start.normal);
-  // Where the superellipsoid's balls certify the best so far (rolling_certificate.h), the rest
-  // is not needed: checked after the discs and the side (endsAndSide), MPR's normal, the rims'
-  // points and each descent.
-  const S tolerance = overlapTolerance(*pair.shape, std::hypot(b.r, b.h));
-  auto outside = [&b](const Vector3<S>& x) { return b.outside(x); };
-  if (depth.certified(outside, tolerance)) return depth.best();
-  // Where MPR found the shapes overlapping by more than kNearTouching × size, F ≥ the depth > 0
-  // everywhere; a piece's f_P equals F inside its region and only falls along a descent, so once
-  // f_P < 0 the descent has left the region for good, and its end cannot be F's minimum there.
-  const S depth_floor = start.distance < -nearTouching(pair, std::hypot(b.r, b.h))
-                            ? S(0)
-                            : -std::numeric_limits<S>::infinity();
-  auto left_region = [depth_floor](const Probe<S>& p) { return p.f < depth_floor; };
-  auto near_axis = [&](const Probe<S>& p) {
-    return left_region(p) || (p.v - p.v.dot(b.z) * b.z).norm() < S(kNearAxis);
-  };
-  const Vector3<S> apex = b.t + b.h * b.z;
-  const SupportMap<S> apex_map = SupportMap<S>::ofPoint(apex);
-  // Each descent may give a candidate the balls certify; then the rest is not needed. A rim's
-  // descent that ends outside the rim's region, below the best F so far, may hide F's minimum
-  // in a second local minimum of f_P inside the region, the first's mirror image across the
-  // side's normals, where the depth would come out too deep (docs/math.md). Each such end is
-  // mirrored once.
-  std::vector<Vector3<S>> mirrored;
-  auto descend = [&](const SupportMap<S>& piece, const Vector3<S>& from, int steps, auto stop,
-                     S side) {
-    const Probe<S> end = depth.offerDescent(piece, from, steps, stop);
-    if (depth.certified(outside, tolerance)) return true;
-    if (side == S(0) || !std::isfinite(end.f) || b.rimSupports(side, Vector3<S>(-end.v)) ||
-        !(end.f < -depth.best().distance)) {
-      return false;
-    }
-    for (const Vector3<S>& v : mirrored) {
-      if ((v - end.v).norm() < S(kNearAxis)) return false;
-    }
-    mirrored.push_back(end.v);
-    depth.offerDescent(piece, b.mirroredAcrossTheSide(end.v), steps, stop);
-    return depth.certified(outside, tolerance);
-  };
-  std::vector<S> sides;  // the rims: the cylinder's two, the cone's base
-  for (S side : {S(1), S(-1)}) {
-    if (!(b.cone && side > S(0))) sides.push_back(side);
-  }
-  // The descent from the best so far of the piece that supports B there (below, after the rims'
-  // points, in any case): first, since where it is certified the rims' 24 point queries (about
-  // a quarter of an overlap's time) are not needed.
-  auto descendFromBest = [&](const Vector3<S>& best) {
-    const Vector3<S> u = -best;  // B's supporting direction there
-    if (b.cone && b.apexSupports(u)) {
-      return descend(apex_map, best, kSphereNewtonIterations, left_region, S(0));
-    }
-    for (S side : sides) {  // the rims that support B along u (both where u ⊥ z)
-      if (!b.rimSupports(side, u)) continue;
-      if (descend(b.rim(side), best, kRimSteps, near_axis, side)) return true;
-    }
-    return false;
-  };
-  const Vector3<S> early = depth.best().normal;
-  if (!std::is_same_v<S, float> && descendFromBest(early)) return depth.best();
-  constexpr int kRimPoints = 12;
-  std::vector<Vector3<S>> points;
-  for (S side : sides) {
-    for (int k = 0; k < kRimPoints; ++k) {
-      points.push_back(b.rimPoint(side, S(2 * M_PI * k / kRimPoints)));
-    }
-  }
-  if (b.cone) points.push_back(apex);
-  const auto escapes = depth.offerPoints(points);
-  if (depth.certified(outside, tolerance)) return depth.best();
-  // In float the pattern search stays, as for the polytopes (docs/math.md).
-  if constexpr (std::is_same_v<S, float>) return depth.refinedBest();
-  const Vector3<S> best = depth.best().normal, u = -best;  // B's supporting direction there
-  // The descent from the best is not repeated while the best is the one it started from.
-  const bool repeated = best == early;
-  for (std::size_t k = 0; k < sides.size(); ++k) {
-    const SupportMap<S> rim = b.rim(sides[k]);
-    const auto first = escapes.begin() + std::ptrdiff_t(k * kRimPoints), last = first + kRimPoints;
-    const int deepest =
-        int(std::min_element(first, last,
-                             [](const auto& x, const auto& y) { return x.distance < y.distance; }) -
-            first);
-    const int lowest =
-        int(std::min_element(first, last, [](const auto& x, const auto& y) { return x.f < y.f; }) -
-            first);
-    for (int i : {deepest, (deepest + 1) % kRimPoints, (deepest + kRimPoints - 1) % kRimPoints}) {
-      if (descend(rim, first[i].direction, kRimSteps, near_axis, sides[k])) return depth.best();
-    }
-    if (std::abs(lowest - deepest) > 1 && std::abs(lowest - deepest) != kRimPoints - 1) {
-      if (descend(rim, first[lowest].direction, kRimSteps, near_axis, sides[k]))
-        return depth.best();
-    }
-    if (b.rimSupports(sides[k], u) && !repeated &&
-        descend(rim, best, kRimSteps, near_axis, sides[k])) {
-      return depth.best();
-    }
-    // From halfway between the best so far and the rim's axis (the disc's direction −side·z):
-    // the basin of a minimum nearer the axis than the best's.
-    const Vector3<S> now = depth.best().normal;
-    if (b.rimSupports(sides[k], Vector3<S>(-now)) &&
-        descend(rim, Vector3<S>(now - sides[k] * b.z), kRimSteps, near_axis, sides[k])) {
-      return depth.best();
-    }
-  }
-  if (b.cone) {
-    if (escapes.back().distance < S(0) &&
-        descend(apex_map, Vector3<S>(-b.z), kSphereNewtonIterations, left_region, S(0))) {
-      return depth.best();
-    }
-    if (b.apexSupports(u) && !repeated) {
-      depth.offerDescent(apex_map, best, kSphereNewtonIterations, left_region);
-    }
-  }
-  // A best near a rim's axis (the disc's normal, or a descent's end near it) that the balls do
-  // not certify: the rim's meridians (offerMeridians), then Newton from the best (a cone and a
-  // cylinder of the larger sample were 5.6e-4 and 4.3e-4 × size too deep without).
-  if (depth.certified(outside, tolerance)) return depth.best();
-  for (S side : sides) {
-    const Vector3<S> d = -side * b.z;
-    if ((depth.best().normal - d).norm() > S(kMeridianTrigger)) continue;
-    offerMeridians(b, side, S(kNearAxis), depth);
-    if (descend(b.rim(side), depth.best().normal, kRimSteps, near_axis, side)) break;
-  }
-  return depth.best();
+  return RoundOverlap<S, Depth>(pair, b, start, depth).run();
 }
 
 /// The cylinder's or cone's stages for featurePair (feature_pair.h); `Geometry` is FCL's class

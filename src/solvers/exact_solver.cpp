@@ -108,9 +108,25 @@ class ExactSolver {
       return finish(centre, true);
     }
 
-    const bool warm = !inside_ && q_.hint != nullptr && !q_.hint->isZero(S(0));
-    // Outside the problem is convex: a warm start that converges is the answer.
     const Candidate<S> radial = candidateFrom(y_, at_y);
+    const bool warm = !inside_ && q_.hint != nullptr && !q_.hint->isZero(S(0));
+    Candidate<S> best = refine(firstStart(radial, warm, g_y));
+    if (inside_) {
+      searchInside(g_y, &best);
+    } else {
+      searchOutside(radial, warm, &best);
+    }
+    best.iterations = iterations_;  // all starts share one budget
+    return finish(best, inside_);
+  }
+
+ private:
+  /// The first start: the warm start (outside, a hint); else the radial projection, unless
+  /// another start is nearer the answer: far outside a box-like shape the support point of Q's
+  /// direction, deeper inside the direction cover's guess (then the radial projection becomes
+  /// the second start, second_start_).
+  Candidate<S> firstStart(const Candidate<S>& radial, bool warm, S g_y) {
+    // Outside the problem is convex: a warm start that converges is the answer.
     Candidate<S> first = warm ? candidateOnRay(toMeridian(q_.hint->cwiseAbs())) : radial;
     if (!inside_ && !warm && primal_first_ &&
         radial.error > S(rules::kSupportStartError) * q_.shape.size()) {
@@ -133,39 +149,41 @@ class ExactSolver {
         first = candidateOnRay(guess);
       }
     }
-    Candidate<S> best = refine(first);
-    if (warm && best.error > q_.tolerance) tryStart(radial, &best);
-    if (!inside_ && best.error > q_.tolerance) {
-      // On elongated shapes the radial start can be far off. The surface points whose normal
-      // points at Q, and along the best answer's contact direction, are better starts.
-      // (The shape's mirror symmetry: h(n) = h(|n|), and a component of Q − N can be negative.)
-      for (const Vector3<S>& direction : {Vector3<S>(y_), Vector3<S>(y_ - best.point)}) {
-        const Vector3<S> n = direction.cwiseAbs().normalized();
-        if (n.allFinite()) tryStart(dual_.evaluate(n, false).gradient, &best);
-      }
-      // Q clamped into the bounding box, then projected radially: on a cigar-like shape this
-      // lands beside Q along the long axis, away from the sharp tips where Newton stalls.
-      const Vector3<S> clamped = y_.cwiseMin(q_.shape.radii());
-      if (best.error > q_.tolerance && clamped.squaredNorm() > S(0)) tryStart(clamped, &best);
-      if (best.error > q_.tolerance) {
-        // Newton stalled (mixed exponents on an elongated shape). The bracketed projection is
-        // exact; every surface point is at least the distance away, so the nearer point wins
-        // even if its Eq. 7 error, which needs the normal, stays above the tolerance at a crease.
-        const Candidate<S> projected = candidateOnRay(projectOutside(q_.shape, y_));
-        if ((y_ - projected.point).squaredNorm() <= (y_ - best.point).squaredNorm()) {
-          best = projected;
-        }
-      }
-      // At a crease the surface formula's normal is one element of the normal cone, and Eq. 7
-      // with it stays large though the point is right: the contact direction may be another.
-      if (best.error > q_.tolerance) tryContactDirection(&best);
-    }
-    if (inside_) searchInside(g_y, &best);
-    best.iterations = iterations_;  // all starts share one budget
-    return finish(best, inside_);
+    return first;
   }
 
- private:
+  /// Outside, the problem is convex, so any converged start is the answer; the starts after
+  /// the first are for where Newton did not converge: the radial start after a warm one, the
+  /// support points of Q's direction and of the answer's contact direction, Q clamped into the
+  /// bounding box, the bracketed projection, and at a crease the contact direction.
+  void searchOutside(const Candidate<S>& radial, bool warm, Candidate<S>* best) {
+    if (warm && best->error > q_.tolerance) tryStart(radial, best);
+    if (best->error <= q_.tolerance) return;
+    // On elongated shapes the radial start can be far off. The surface points whose normal
+    // points at Q, and along the best answer's contact direction, are better starts.
+    // (The shape's mirror symmetry: h(n) = h(|n|), and a component of Q − N can be negative.)
+    for (const Vector3<S>& direction : {Vector3<S>(y_), Vector3<S>(y_ - best->point)}) {
+      const Vector3<S> n = direction.cwiseAbs().normalized();
+      if (n.allFinite()) tryStart(dual_.evaluate(n, false).gradient, best);
+    }
+    // Q clamped into the bounding box, then projected radially: on a cigar-like shape this
+    // lands beside Q along the long axis, away from the sharp tips where Newton stalls.
+    const Vector3<S> clamped = y_.cwiseMin(q_.shape.radii());
+    if (best->error > q_.tolerance && clamped.squaredNorm() > S(0)) tryStart(clamped, best);
+    if (best->error > q_.tolerance) {
+      // Newton stalled (mixed exponents on an elongated shape). The bracketed projection is
+      // exact; every surface point is at least the distance away, so the nearer point wins
+      // even if its Eq. 7 error, which needs the normal, stays above the tolerance at a crease.
+      const Candidate<S> projected = candidateOnRay(projectOutside(q_.shape, y_));
+      if ((y_ - projected.point).squaredNorm() <= (y_ - best->point).squaredNorm()) {
+        *best = projected;
+      }
+    }
+    // At a crease the surface formula's normal is one element of the normal cone, and Eq. 7
+    // with it stays large though the point is right: the contact direction may be another.
+    if (best->error > q_.tolerance) tryContactDirection(best);
+  }
+
   /// Inside, the problem is not convex: starts beyond the radial one, until the best answer so far
   /// is certified to be the global nearest point: the ball around Q through it lies inside the
   /// shape, so nothing on the surface is nearer (exact_rules::certifiedGlobal, the rolling ball,

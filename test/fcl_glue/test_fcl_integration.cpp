@@ -163,42 +163,21 @@ template <typename S>
 class FclIntegrationTest : public ::testing::Test {};
 TYPED_TEST_SUITE(FclIntegrationTest, test::Scalars);
 
-TYPED_TEST(FclIntegrationTest, EveryBvTypeMatchesBruteForce) {
-  using S = TypeParam;
+// Every BV type of FCL's BVHModel, in float and double, against brute force.
+template <typename BV>
+class FclIntegrationBvTest : public ::testing::Test {};
+using BvTypes =
+    ::testing::Types<fcl::AABB<float>, fcl::OBB<float>, fcl::RSS<float>, fcl::kIOS<float>,
+                     fcl::OBBRSS<float>, fcl::KDOP<float, 16>, fcl::KDOP<float, 18>,
+                     fcl::KDOP<float, 24>, fcl::AABB<double>, fcl::OBB<double>, fcl::RSS<double>,
+                     fcl::kIOS<double>, fcl::OBBRSS<double>, fcl::KDOP<double, 16>,
+                     fcl::KDOP<double, 18>, fcl::KDOP<double, 24>>;
+TYPED_TEST_SUITE(FclIntegrationBvTest, BvTypes);
+
+TYPED_TEST(FclIntegrationBvTest, MatchesBruteForce) {
   for (bool cloud : {true, false}) {
     SCOPED_TRACE(cloud ? "point cloud" : "triangle mesh");
-    {
-      SCOPED_TRACE("AABB");
-      checkAgainstBruteForce<fcl::AABB<S>>(cloud);
-    }
-    {
-      SCOPED_TRACE("OBB");
-      checkAgainstBruteForce<fcl::OBB<S>>(cloud);
-    }
-    {
-      SCOPED_TRACE("RSS");
-      checkAgainstBruteForce<fcl::RSS<S>>(cloud);
-    }
-    {
-      SCOPED_TRACE("kIOS");
-      checkAgainstBruteForce<fcl::kIOS<S>>(cloud);
-    }
-    {
-      SCOPED_TRACE("OBBRSS");
-      checkAgainstBruteForce<fcl::OBBRSS<S>>(cloud);
-    }
-    {
-      SCOPED_TRACE("KDOP16");
-      checkAgainstBruteForce<fcl::KDOP<S, 16>>(cloud);
-    }
-    {
-      SCOPED_TRACE("KDOP18");
-      checkAgainstBruteForce<fcl::KDOP<S, 18>>(cloud);
-    }
-    {
-      SCOPED_TRACE("KDOP24");
-      checkAgainstBruteForce<fcl::KDOP<S, 24>>(cloud);
-    }
+    checkAgainstBruteForce<TypeParam>(cloud);
   }
 }
 

@@ -136,7 +136,6 @@ TEST(HessianBall, BoundsTheHessianOverItsBox) {
 
 TEST(HessianBall, CertifiesOnlyGlobalNearestPoints) {
   std::mt19937 rng(7);
-  std::uniform_real_distribution<double> u(0, 1);
   test::AngleSampler angles(9);
   int certified = 0, wrong_local = 0, total = 0;
   for (const auto& p : kShapes) {
@@ -144,17 +143,12 @@ TEST(HessianBall, CertifiesOnlyGlobalNearestPoints) {
     SCOPED_TRACE(test::describe(shape));
     const test::ReferenceDistance reference({p[0], p[1], p[2]}, p[3], p[4]);
     const auto gauge = detail::NestedNorm<double>::gauge(shape);
-    const double min_radius = std::min({p[0], p[1], p[2]});
     for (int k = 0; k < 60; ++k) {
-      // A stationary point of the distance by construction: Q = N − d·n for a surface point N
-      // of the first octant and its normal n, d from shallow to beyond the smallest radius
-      // (where N is usually a local minimum or a saddle, not the global answer).
-      const auto [eta, omega] = angles();
-      const Vector3<double> n_point = shape.surfacePoint(eta, omega).cwiseAbs();
-      const Vector3<double> normal = shape.normal(n_point);
-      const double d = min_radius * std::pow(10.0, -3 + 3.2 * u(rng));
-      const Vector3<double> y = n_point - d * normal;
-      if ((y.array() < 0).any()) continue;  // Q left the first octant: another octant's point
+      // d from 1e-3 to 1.6 × the smallest radius.
+      const std::optional<test::StationaryPoint> point =
+          test::stationaryPoint(shape, angles, rng, -3, 3.2);
+      if (!point) continue;
+      const auto& [y, n_point, normal, d] = *point;
       ++total;
       const Vector3<double> gradient = gauge.evaluate(n_point, false).gradient;
       if (!detail::hessianBallCertified(gauge, y, n_point, gradient, d, 0.0)) continue;

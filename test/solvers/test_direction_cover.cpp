@@ -256,7 +256,6 @@ TEST(DirectionCover, RefinedCapHoldsEveryLowDirection) {
 // may be certified.
 TEST(DirectionCover, CertifiesOnlyGlobalNearestPoints) {
   std::mt19937 rng(17);
-  std::uniform_real_distribution<double> u(0, 1);
   test::AngleSampler angles(19);
   int total = 0, certified = 0, not_global = 0, beyond_ball = 0;
   for (const auto& p : kShapes) {
@@ -264,14 +263,12 @@ TEST(DirectionCover, CertifiesOnlyGlobalNearestPoints) {
     SCOPED_TRACE(test::describe(shape));
     const test::ReferenceDistance reference({p[0], p[1], p[2]}, p[3], p[4]);
     const auto gauge = detail::NestedNorm<double>::gauge(shape);
-    const double min_radius = std::min({p[0], p[1], p[2]});
     for (int k = 0; k < 60; ++k) {
-      const auto [eta, omega] = angles();
-      const Vector3<double> n_point = shape.surfacePoint(eta, omega).cwiseAbs();
-      const Vector3<double> normal = shape.normal(n_point);
-      const double d = min_radius * std::pow(10.0, -2 + 2.2 * u(rng));
-      const Vector3<double> y = n_point - d * normal;
-      if ((y.array() < 0).any() || !shape.contains(y)) continue;
+      // d from 1e-2 to 1.6 × the smallest radius.
+      const std::optional<test::StationaryPoint> point =
+          test::stationaryPoint(shape, angles, rng, -2, 2.2);
+      if (!point || !shape.contains(point->y)) continue;
+      const auto& [y, n_point, normal, d] = *point;
       ++total;
       const Verdict verdict = judge(shape, reference, gauge, y, n_point, normal, d);
       if (!verdict.global) ++not_global;
