@@ -54,7 +54,7 @@ namespace fcl_superellipsoid {
 namespace detail {
 
 /// x^k for x ≥ 0 as exp2(k·log2 x): within a few ulps of pow() (the 1 % margin of the bounds
-/// below covers them) at a third of its cost; the bounds take 20–30 powers each. 0^k is 0 for
+/// below covers them) at a fraction of its cost; the bounds take 20–30 powers each. 0^k is 0 for
 /// k > 0 and ∞ for k < 0, as pow() gives; x^0 and 1^k are 1 (where k·log2 x would be 0·∞).
 template <typename S>
 inline S boundPow(S x, S k) {
