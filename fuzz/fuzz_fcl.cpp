@@ -1,6 +1,7 @@
 // Fuzz target 3: the FCL front end and FCL's table entries (GJKSolver_libccd) on random pairs
-// and poses: the superellipsoid against every FCL shape, another superellipsoid, a mesh or a
-// point cloud in every BV type, both argument orders, float and double. No crash, finite results,
+// and poses: a superellipsoid of the fixed family (shape_family.h) against every FCL shape,
+// another of the family, a mesh or a point cloud in every BV type, both argument orders, float
+// and double. No crash, finite results,
 // and distance and collide agree on the sign. docs/hardening.md → "Fuzzing".
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
@@ -19,6 +20,7 @@
 #include "fcl_superellipsoid/fcl_integration.h"
 #include "fcl_superellipsoid/tessellation.h"
 #include "fuzz_input.h"
+#include "shape_family.h"
 
 namespace {
 
@@ -76,9 +78,8 @@ Vector3<S> anyPoint(FuzzedDataProvider& in, S reach) {
                             S(1) - S(2) * in.ConsumeProbability<S>());
 }
 
-/// One of FCL's shapes or another superellipsoid, sized around `size` (down to degenerate:
-/// FCL accepts zero lengths and collinear triangles); null for a superellipsoid refused with a
-/// named value.
+/// One of FCL's shapes, sized around `size` (down to degenerate: FCL accepts zero lengths and
+/// collinear triangles), or another superellipsoid of the family.
 template <typename S>
 std::shared_ptr<fcl::CollisionGeometry<S>> makeShapePartner(FuzzedDataProvider& in, S size,
                                                             int kind) {
@@ -88,15 +89,8 @@ std::shared_ptr<fcl::CollisionGeometry<S>> makeShapePartner(FuzzedDataProvider& 
   switch (kind) {
     case 0:
       return std::make_shared<fcl::Sphere<S>>(size * fuzz::aroundOne<S>(in, 4));
-    case 1:
-      try {
-        return std::make_shared<Superellipsoid<S>>(
-            size * fuzz::aroundOne<S>(in, 4), size * fuzz::aroundOne<S>(in, 4),
-            size * fuzz::aroundOne<S>(in, 4), fuzz::anyExponent<S>(in), fuzz::anyExponent<S>(in));
-      } catch (const std::invalid_argument& e) {
-        fuzz::requireNamedValue(e);
-        return nullptr;
-      }
+    case 1:  // another of the family (new shapes: fuzz_new_shape)
+      return fuzz::familyShape<S>(in);
     case 2:
       return std::make_shared<fcl::Ellipsoid<S>>(size * fuzz::aroundOne<S>(in, 4),
                                                  size * fuzz::aroundOne<S>(in, 4),
@@ -135,15 +129,7 @@ std::shared_ptr<fcl::CollisionGeometry<S>> makeShapePartner(FuzzedDataProvider& 
 
 template <typename S>
 void run(FuzzedDataProvider& in) {
-  std::shared_ptr<Superellipsoid<S>> shape;
-  try {
-    shape = std::make_shared<Superellipsoid<S>>(
-        fuzz::aroundOne<S>(in, 6), fuzz::aroundOne<S>(in, 6), fuzz::aroundOne<S>(in, 6),
-        fuzz::anyExponent<S>(in), fuzz::anyExponent<S>(in));
-  } catch (const std::invalid_argument& e) {
-    fuzz::requireNamedValue(e);
-    return;
-  }
+  const std::shared_ptr<Superellipsoid<S>> shape = fuzz::familyShape<S>(in);
   const S size = shape->size();
   std::shared_ptr<fcl::CollisionGeometry<S>> partner;
   const int kind = in.ConsumeIntegralInRange<int>(0, 13);

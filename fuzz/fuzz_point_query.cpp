@@ -1,12 +1,14 @@
-// Fuzz target 1: a shape from raw bytes (radii, exponents: any bit pattern) and a query point,
-// every method, float and double. Invalid input may only throw std::invalid_argument naming
-// the value; valid input must give an answer that meets the point-query contract
-// (point_contract.h). docs/hardening.md → "Fuzzing".
-#include <optional>
+// Fuzz target 1: a shape of the fixed family (shape_family.h, built once per process) and a
+// query point, every method, float and double. Invalid input may only throw
+// std::invalid_argument naming the value; valid input must give an answer that meets the
+// point-query contract (point_contract.h). New shapes from raw bytes: fuzz_new_shape.
+// docs/hardening.md → "Fuzzing".
+#include <memory>
 
 #include "fcl_superellipsoid/point_distance.h"
 #include "fuzz_input.h"
 #include "point_contract.h"
+#include "shape_family.h"
 
 namespace {
 
@@ -16,25 +18,8 @@ using fcl_superellipsoid::Superellipsoid;
 using fuzz::Vector3;
 
 template <typename S>
-std::optional<Superellipsoid<S>> makeShape(FuzzedDataProvider& in) {
-  const int spread = sizeof(S) == 4 ? 24 : 180;  // radii around 1, up to 2^±spread
-  const S a1 = fuzz::aroundOne<S>(in, spread);
-  const S a2 = in.ConsumeBool() ? a1 : fuzz::aroundOne<S>(in, spread);
-  const S a3 = in.ConsumeBool() ? a1 : fuzz::aroundOne<S>(in, spread);
-  const S e1 = fuzz::anyExponent<S>(in);
-  const S e2 = in.ConsumeBool() ? e1 : fuzz::anyExponent<S>(in);
-  try {
-    return Superellipsoid<S>(a1, a2, a3, e1, e2);
-  } catch (const std::invalid_argument& e) {
-    fuzz::requireNamedValue(e);
-    return std::nullopt;
-  }
-}
-
-template <typename S>
 void run(FuzzedDataProvider& in) {
-  const std::optional<Superellipsoid<S>> shape = makeShape<S>(in);
-  if (!shape) return;
+  const std::shared_ptr<Superellipsoid<S>>& shape = fuzz::familyShape<S>(in);
   // The query: relative to the shape's size (near the surface, deep inside, far away), or any
   // scalar at all.
   Vector3<S> p;

@@ -2,13 +2,13 @@
 # Runs the libFuzzer targets (docs/hardening.md → "Fuzzing") from the sanitizer build.
 #   scripts/fuzz.sh                    every target, 1e7 inputs each, one after the other
 #   scripts/fuzz.sh TARGET [RUNS]      one target (fuzz_point_query, fuzz_batch, fuzz_fcl,
-#                                      fuzz_scene_loader)
+#                                      fuzz_new_shape, fuzz_scene_loader)
 # New interesting inputs go to fuzz-out/<target>/ (not committed); crashes to fuzz-out/crash-*.
 # To fold a run's finds into the seed corpus:
 #   build-asan/fuzz/<target> -merge=1 fuzz/corpus/<target> fuzz-out/<target>
 set -euo pipefail
 cd "$(dirname "$0")/.."
-targets=(fuzz_point_query fuzz_batch fuzz_fcl fuzz_scene_loader)
+targets=(fuzz_point_query fuzz_batch fuzz_fcl fuzz_new_shape fuzz_scene_loader)
 runs=10000000
 if [ $# -ge 1 ]; then targets=("$1"); fi
 if [ $# -ge 2 ]; then runs=$2; fi
