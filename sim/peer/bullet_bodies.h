@@ -14,10 +14,10 @@
 #include <vector>
 
 #include "contact/rigid_contact.h"
-#include "physics/phases.h"
 #include "model/rigid_body.h"
-#include "model/static_mesh.h"
 #include "model/scene.h"
+#include "model/static_mesh.h"
+#include "physics/phases.h"
 
 namespace fse_sim {
 

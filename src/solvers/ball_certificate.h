@@ -46,9 +46,9 @@
 #include <cmath>
 #include <limits>
 
-#include "solvers/direction_cover.h"
 #include "shape/nested_norm.h"
 #include "shape/symmetric2.h"
+#include "solvers/direction_cover.h"
 
 namespace fcl_superellipsoid {
 namespace detail {

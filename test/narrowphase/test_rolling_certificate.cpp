@@ -24,9 +24,9 @@
 #include <vector>
 
 #include "enumerated_depth.h"
+#include "fcl_superellipsoid/point_distance.h"
 #include "narrowphase/rolling_certificate.h"
 #include "narrowphase/support_map.h"
-#include "fcl_superellipsoid/point_distance.h"
 #include "pair_construction.h"
 #include "polytope_depth.h"
 #include "round_depth.h"
