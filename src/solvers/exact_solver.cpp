@@ -43,6 +43,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <type_traits>
 #include <utility>
 
@@ -87,9 +88,16 @@ class ExactSolver {
       // vanish there exactly), and the ring of nearest points that Q near the axis has on a
       // round cross-section becomes a single point.
       const S rho = std::hypot(y_[0], y_[1]);
-      if (rho > S(0)) {
+      if (rho >= std::numeric_limits<S>::min()) {
         cos_ = y_[0] / rho;
         sin_ = y_[1] / rho;
+      } else if (rho > S(0)) {
+        // Subnormal: rho keeps too few bits for the quotients to be a unit vector. Scaled by
+        // 2^digits (exact), the coordinates are normal.
+        const S scale = std::ldexp(S(1), std::numeric_limits<S>::digits);
+        const S x = y_[0] * scale, y = y_[1] * scale, r = std::hypot(x, y);
+        cos_ = x / r;
+        sin_ = y / r;
       }
       y_ = Vector3<S>(rho, S(0), y_[2]);
     }

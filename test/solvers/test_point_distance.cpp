@@ -511,6 +511,44 @@ TYPED_TEST(PointDistanceTest, SurfacesOfRevolutionAnswerInTheMeridianPlane) {
   }
 }
 
+// Q a subnormal distance off the axis of a surface of revolution (fuzz_point_query: the turn
+// onto Q's meridian plane was computed from a subnormal radius, and was no rotation). Q is then
+// on the axis to within rounding: the answer has the reference's distance at (0, 0, z), a unit
+// normal, and its nearest point on Q's meridian (at 45°: x = y, or on the axis).
+TYPED_TEST(PointDistanceTest, SubnormalDistanceFromTheAxisOfRevolution) {
+  using S = TypeParam;
+  const auto options = DistanceOptions<S>::of(DistanceMethod::kExact);
+  const S tiny = std::numeric_limits<S>::denorm_min();
+  const S eps = std::numeric_limits<S>::epsilon();
+  for (const auto& c : std::vector<std::array<double, 5>>{
+           {1, 1, 1, 1, 1.98}, {0.8, 0.8, 1.2, 1, 0.3}, {1, 1, 1.5, 1, 1.6}}) {
+    const Superellipsoid<S> shape = makeShape<S>({c[0], c[1], c[2]}, c[3], c[4]);
+    SCOPED_TRACE(test::describe(shape));
+    const test::ReferenceDistance reference({c[0], c[1], c[2]}, c[3], c[4]);
+    const double size = shape.size(), target = test::exactTarget<S>(c[3], c[4]);
+    for (double height : {-0.12, 0.5, 0.97, 1.3}) {
+      const S z = S(height * c[2]);
+      for (const Vector3<S>& x : {Vector3<S>(tiny, tiny, z), Vector3<S>(S(3) * tiny, tiny, z),
+                                  Vector3<S>(tiny, S(0), z)}) {
+        SCOPED_TRACE("Q = (" + std::to_string(x[0] / tiny) + ", " + std::to_string(x[1] / tiny) +
+                     ") × the smallest subnormal, z = " + std::to_string(double(z)));
+        const auto r = pointDistance(shape, x, options);
+        EXPECT_NEAR(double(r.normal.norm()), 1.0, 64 * eps);
+        const auto truth = reference.query({0, 0, double(z)});
+        EXPECT_NEAR(double(r.distance), double(truth.distance), target * size);
+        // On Q's meridian: the nearest point's azimuth is Q's (its x : y is Q's, 1 : 1 or 3 : 1
+        // or 1 : 0), unless it is on the axis.
+        const double nx = r.nearest_point[0], ny = r.nearest_point[1];
+        if (std::hypot(nx, ny) > target * size) {
+          EXPECT_NEAR(nx * double(x[1] / tiny), ny * double(x[0] / tiny),
+                      64 * eps * std::hypot(nx, ny) * 3)
+              << r.nearest_point.transpose();
+        }
+      }
+    }
+  }
+}
+
 // Shapes with a nearly round cross-section and ε2 ≠ 1, queried near their centre
 // (docs/hardening.md, finding 13). The nearest points lie near a ring (at ±45° latitude where
 // ε2 > 1, on the equator where ε2 < 1), and Q's small offset from the centre makes the valley
