@@ -17,7 +17,7 @@ if(NOT BUILD_DIR)
   set(BUILD_DIR ${WORK_DIR}/lib-build)
   run(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${BUILD_DIR} -G ${GENERATOR}
       -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-O0 -DBUILD_SHARED_LIBS=${BUILD_SHARED}
-      -DFSE_BUILD_TESTS=OFF -DFSE_BUILD_BENCH=OFF)
+      -DFSE_BUILD_TESTS=OFF -DFSE_BUILD_BENCH=OFF -DFSE_BUILD_PYTHON=OFF)
   run(${CMAKE_COMMAND} --build ${BUILD_DIR} --parallel 2)
 endif()
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
@@ -34,4 +34,15 @@ if(kind STREQUAL "STATIC_LIBRARY")
   run(${WORK_DIR}/consumer-build/plain_calls_fcl_first interposed)
 else()
   run(${WORK_DIR}/consumer-build/plain_calls_fcl_first libfcl)
+endif()
+
+# The Python module, if this tree built it: imported from the prefix's Python folder.
+if(PYTHON AND PYTHON_DIR)
+  set(ENV{LD_LIBRARY_PATH} "")
+  set(ENV{PYTHONPATH} "${prefix}/${PYTHON_DIR}")
+  # (Python statements on lines of their own: a ";" would split the argument in CMake.)
+  run(${PYTHON} -c "import fcl_superellipsoid as f
+assert f.__file__.startswith('${prefix}'), f.__file__
+assert f.Superellipsoid((1, 1, 1), (1, 1)).signed_distance([3, 0, 0]) == 2.0
+print('Python consumer: imported from', f.__file__)")
 endif()

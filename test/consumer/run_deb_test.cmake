@@ -1,10 +1,14 @@
-# The Debian package of a build tree, made and consumed as a user of the .deb would:
-#  1. cpack -G DEB makes the package from BUILD_DIR;
-#  2. its control data must name the Debian packages it needs, and it must hold the library,
-#     the headers, the CMake package and the pkg-config file;
-#  3. it is unpacked (dpkg-deb -x: the files an install puts in /usr, under WORK_DIR/root);
+# The Debian packages of a build tree, made and consumed as a user of the .deb would:
+#  1. cpack -G DEB makes the packages from BUILD_DIR (the Python module's too, if PYTHON is set:
+#     the interpreter it was built for);
+#  2. their control data must name the Debian packages they need, and the library's must hold
+#     the library, the headers, the CMake package and the pkg-config file, the module's its
+#     package in Debian's Python folder;
+#  3. they are unpacked (dpkg-deb -x: the files an install puts in /usr, under WORK_DIR/root);
 #  4. the consumer (consumer/) is built against it with CMake (find_package), and scene.cpp
-#     once more with nothing but pkg-config's flags; both run.
+#     once more with nothing but pkg-config's flags; both run;
+#  5. the interpreter imports the unpacked module (which finds the library by its RPATH) and
+#     queries a shape.
 # (Installing it for real is `apt-get install ./libfcl-superellipsoid-dev_*.deb`; a test does not
 # change the machine's /usr.)
 file(REMOVE_RECURSE ${WORK_DIR})
@@ -23,16 +27,24 @@ function(expect haystack needle what)
   endif()
 endfunction()
 
-# 1. The package.
+# 1. The packages.
 run(${CPACK} -G DEB --config ${BUILD_DIR}/CPackConfig.cmake -B ${WORK_DIR}/deb)
-file(GLOB debs ${WORK_DIR}/deb/*.deb)
+file(GLOB debs ${WORK_DIR}/deb/libfcl-superellipsoid-dev_*.deb)
+file(GLOB python_debs ${WORK_DIR}/deb/python3-fcl-superellipsoid_*.deb)
 list(LENGTH debs count)
-if(NOT count EQUAL 1)
-  message(FATAL_ERROR "expected one .deb in ${WORK_DIR}/deb, found: ${debs}")
+list(LENGTH python_debs python_count)
+set(expected_python 0)
+if(PYTHON)
+  set(expected_python 1)
 endif()
-message(STATUS "package: ${debs}")
+if(NOT count EQUAL 1 OR NOT python_count EQUAL expected_python)
+  file(GLOB all ${WORK_DIR}/deb/*.deb)
+  message(FATAL_ERROR "expected one library package and ${expected_python} Python package(s) in "
+                      "${WORK_DIR}/deb, found: ${all}")
+endif()
+message(STATUS "packages: ${debs} ${python_debs}")
 
-# 2. What it says and what it holds.
+# 2. What they say and what they hold.
 run(dpkg-deb --field ${debs} Package Depends)
 expect("${run_output}" "libfcl-superellipsoid-dev" "control: name")
 foreach(dependency libfcl-dev libeigen3-dev libtbb-dev libhwy-dev)
@@ -46,9 +58,27 @@ foreach(file include/fcl_superellipsoid/superellipsoid.h include/fcl_superellips
         include/fcl_superellipsoid/interpose.h)
   expect("${contents}" "${file}" "contents")
 endforeach()
+string(FIND "${contents}" "dist-packages" python_in_dev)
+if(NOT python_in_dev EQUAL -1)
+  message(FATAL_ERROR "the library's package holds Python files:\n${contents}")
+endif()
+if(PYTHON)
+  run(dpkg-deb --field ${python_debs} Package Depends)
+  foreach(needle python3-fcl-superellipsoid "libfcl-superellipsoid-dev (=" python3-numpy
+          "python3 (>=")
+    expect("${run_output}" "${needle}" "control of the Python package")
+  endforeach()
+  run(dpkg-deb --contents ${python_debs})
+  foreach(file __init__.py __init__.pyi py.typed _core.cpython)
+    expect("${run_output}" "./usr/lib/python3/dist-packages/fcl_superellipsoid/${file}"
+           "contents of the Python package")
+  endforeach()
+endif()
 
 # 3. Unpacked.
-run(dpkg-deb -x ${debs} ${root})
+foreach(deb ${debs} ${python_debs})
+  run(dpkg-deb -x ${deb} ${root})
+endforeach()
 file(GLOB_RECURSE pc_files ${root}/*/fcl_superellipsoid.pc)
 get_filename_component(pc_dir "${pc_files}" DIRECTORY)
 get_filename_component(lib_dir "${pc_dir}" DIRECTORY)
@@ -76,3 +106,17 @@ run(c++ -O1 ${consumer_flags} ${SOURCE_DIR}/test/consumer/scene.cpp ${flags} -st
     -o ${WORK_DIR}/scene-pkg-config)
 run(${WORK_DIR}/scene-pkg-config)
 message(STATUS "pkg-config consumer: ${run_output}")
+
+# 5. The Python module, as the interpreter finds it in /usr/lib/python3/dist-packages; no
+#    LD_LIBRARY_PATH, so the library comes through the module's RPATH.
+if(PYTHON)
+  set(ENV{LD_LIBRARY_PATH} "")
+  set(ENV{PYTHONPATH} "${root}/usr/lib/python3/dist-packages")
+  # (Python statements on lines of their own: a ";" would split the argument in CMake.)
+  run(${PYTHON} -c "import fcl_superellipsoid as f
+s = f.Superellipsoid((1, 1, 1), (1, 1))
+assert f.__file__.startswith('${root}'), f.__file__
+print(s.signed_distance([[3, 0, 0]])[0])")
+  expect("${run_output}" "2.0" "Python import")
+  message(STATUS "Python consumer: ${run_output}")
+endif()

@@ -1,0 +1,53 @@
+"""The superellipsoid collision geometry for FCL, on numpy arrays.
+
+    import numpy as np
+    import fcl_superellipsoid as fse
+
+    shape = fse.Superellipsoid(radii=(3.5, 3.0, 2.0), exponents=(0.4, 0.3))
+    d = shape.signed_distance(np.random.rand(10000, 3) * 8 - 4)   # (N,), < 0 inside
+
+The manual, with every call and its conventions: docs/python.md.
+"""
+from ._core import (
+    Box,
+    Capsule,
+    Cone,
+    Contact,
+    Convex,
+    Cylinder,
+    Ellipsoid,
+    Halfspace,
+    MarginQuery,
+    PairDistance,
+    Plane,
+    PointQuery,
+    Shape,
+    Sphere,
+    Superellipsoid,
+    Triangle,
+    collide,
+    distance,
+    simd_instruction_set,
+)
+
+__all__ = [
+    "Box",
+    "Capsule",
+    "Cone",
+    "Contact",
+    "Convex",
+    "Cylinder",
+    "Ellipsoid",
+    "Halfspace",
+    "MarginQuery",
+    "PairDistance",
+    "Plane",
+    "PointQuery",
+    "Shape",
+    "Sphere",
+    "Superellipsoid",
+    "Triangle",
+    "collide",
+    "distance",
+    "simd_instruction_set",
+]

@@ -1,0 +1,144 @@
+# Type stubs of fcl_superellipsoid (written by hand; test_stubs.py checks them against the module).
+from typing import Literal, NamedTuple, Optional, Sequence, Tuple, Union, overload
+
+import numpy as np
+import numpy.typing as npt
+
+ArrayLike = npt.ArrayLike
+FloatArray = npt.NDArray[np.floating]
+Pose = Union[None, ArrayLike, Tuple[ArrayLike, ArrayLike]]
+Method = Literal["exact", "paper", "radial"]
+
+simd_instruction_set: str
+
+class PointQuery(NamedTuple):
+    distance: Union[float, FloatArray]
+    nearest_point: FloatArray
+    normal: FloatArray
+
+class MarginQuery(NamedTuple):
+    index: npt.NDArray[np.int64]
+    distance: FloatArray
+    nearest_point: FloatArray
+    normal: FloatArray
+
+class PairDistance(NamedTuple):
+    distance: float
+    point1: npt.NDArray[np.float64]
+    point2: npt.NDArray[np.float64]
+    normal: npt.NDArray[np.float64]
+
+class Contact(NamedTuple):
+    position: npt.NDArray[np.float64]
+    normal: npt.NDArray[np.float64]
+    depth: float
+
+class Shape: ...
+
+class Superellipsoid(Shape):
+    def __init__(self, radii: ArrayLike, exponents: ArrayLike) -> None: ...
+    @property
+    def radii(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def exponents(self) -> Tuple[float, float]: ...
+    @property
+    def size(self) -> float: ...
+    @property
+    def volume(self) -> float: ...
+    @property
+    def inertia(self) -> npt.NDArray[np.float64]: ...
+    def support(self, directions: ArrayLike) -> npt.NDArray[np.float64]: ...
+    @overload
+    def contains(self, points: Sequence[float]) -> bool: ...
+    @overload
+    def contains(self, points: ArrayLike) -> Union[bool, npt.NDArray[np.bool_]]: ...
+    def tessellate(
+        self, num_vertices: int
+    ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]: ...
+    def signed_distance(
+        self,
+        points: ArrayLike,
+        pose: Pose = None,
+        *,
+        method: Method = "exact",
+        tolerance: Optional[float] = None,
+        max_iterations: Optional[int] = None,
+        threads: int = 0,
+        vectorize: bool = True,
+    ) -> Union[float, FloatArray]: ...
+    def closest_points(
+        self,
+        points: ArrayLike,
+        pose: Pose = None,
+        *,
+        method: Method = "exact",
+        tolerance: Optional[float] = None,
+        max_iterations: Optional[int] = None,
+        threads: int = 0,
+        vectorize: bool = True,
+    ) -> PointQuery: ...
+    def within_margin(
+        self,
+        points: ArrayLike,
+        margin: float,
+        pose: Pose = None,
+        *,
+        method: Method = "exact",
+        tolerance: Optional[float] = None,
+        max_iterations: Optional[int] = None,
+        threads: int = 0,
+        vectorize: bool = True,
+    ) -> MarginQuery: ...
+
+class Box(Shape):
+    def __init__(self, x: float, y: float, z: float) -> None: ...
+    @property
+    def side(self) -> npt.NDArray[np.float64]: ...
+
+class Sphere(Shape):
+    def __init__(self, radius: float) -> None: ...
+    @property
+    def radius(self) -> float: ...
+
+class Ellipsoid(Shape):
+    def __init__(self, a: float, b: float, c: float) -> None: ...
+    @property
+    def radii(self) -> npt.NDArray[np.float64]: ...
+
+class Capsule(Shape):
+    def __init__(self, radius: float, length: float) -> None: ...
+    @property
+    def radius(self) -> float: ...
+    @property
+    def length(self) -> float: ...
+
+class Cylinder(Shape):
+    def __init__(self, radius: float, length: float) -> None: ...
+    @property
+    def radius(self) -> float: ...
+    @property
+    def length(self) -> float: ...
+
+class Cone(Shape):
+    def __init__(self, radius: float, length: float) -> None: ...
+    @property
+    def radius(self) -> float: ...
+    @property
+    def length(self) -> float: ...
+
+class Convex(Shape):
+    def __init__(self, vertices: ArrayLike, faces: ArrayLike) -> None: ...
+
+class Triangle(Shape):
+    def __init__(self, a: ArrayLike, b: ArrayLike, c: ArrayLike) -> None: ...
+
+class Halfspace(Shape):
+    def __init__(self, normal: ArrayLike, offset: float) -> None: ...
+
+class Plane(Shape):
+    def __init__(self, normal: ArrayLike, offset: float) -> None: ...
+
+def distance(shape1: Shape, pose1: Pose, shape2: Shape, pose2: Pose) -> PairDistance: ...
+def collide(
+    shape1: Shape, pose1: Pose, shape2: Shape, pose2: Pose, max_contacts: int = 1
+) -> list[Contact]: ...

@@ -1,0 +1,134 @@
+"""Pair queries against constructed truth: a shape placed at a known distance along the
+superellipsoid's normal, a halfspace's depth from the support function; conventions and errors."""
+import numpy as np
+import pytest
+
+import fcl_superellipsoid as fse
+
+from conftest import random_rotation, unit_directions
+
+
+def frame_with_z(n):
+    """A rotation whose third column is the unit vector n."""
+    helper = np.array([1.0, 0.0, 0.0]) if abs(n[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    x = np.cross(helper, n)
+    x /= np.linalg.norm(x)
+    return np.column_stack([x, np.cross(n, x), n])
+
+
+def touching_along(shape, u, gap, half_height):
+    """A pose for a shape whose extent along its -z is half_height, with its -z face or tip
+    at the support point of u moved out by gap along u."""
+    R = frame_with_z(u)
+    return (R, shape.support(u) + (gap + half_height) * u)
+
+
+@pytest.mark.parametrize(
+    "other,half_height",
+    [(fse.Sphere(0.5), 0.5), (fse.Box(0.4, 0.6, 0.8), 0.4), (fse.Cylinder(0.3, 1.0), 0.5),
+     (fse.Capsule(0.3, 1.0), 0.8)],
+    ids=["sphere", "box", "cylinder", "capsule"])
+def test_separated_distance_and_witnesses_match_the_construction(shape, other, half_height):
+    for i, u in enumerate(unit_directions(12, seed=31)):
+        gap = 0.05 + 0.3 * i / 12 * shape.size
+        pose = touching_along(shape, u, gap, half_height)
+        d = fse.distance(shape, None, other, pose)
+        assert d.distance == pytest.approx(gap, abs=1e-9 * shape.size)
+        np.testing.assert_allclose(d.point1, shape.support(u), atol=1e-7 * shape.size)
+        np.testing.assert_allclose(d.normal, u, atol=1e-6)
+        np.testing.assert_allclose(d.point2 - d.point1, d.distance * d.normal, atol=1e-9)
+        assert fse.collide(shape, None, other, pose) == []
+
+
+def test_halfspace_depth_is_the_support_function(shape):
+    for n in unit_directions(20, seed=32):
+        offset = 0.3 * shape.size  # the halfspace {x : n . x <= offset}, before the pose
+        expected = float(n @ shape.support(-n)) - offset  # min over the shape of n . x, - offset
+        R, t = random_rotation(5), np.array([1.0, -2.0, 0.5])
+        world = fse.Halfspace(R @ n, offset + float((R @ n) @ t))
+        d = fse.distance(shape, (R, t), world, None)
+        assert d.distance == pytest.approx(expected, abs=1e-9 * shape.size)
+        np.testing.assert_allclose(d.normal, -(R @ n), atol=1e-9)
+        contacts = fse.collide(shape, (R, t), world, None)
+        if expected < 0:
+            assert len(contacts) == 1
+            assert contacts[0].depth == pytest.approx(-expected, abs=1e-9 * shape.size)
+            np.testing.assert_allclose(contacts[0].normal, -(R @ n), atol=1e-9)  # into the halfspace
+
+
+def test_the_order_of_the_shapes_flips_the_normal():
+    s = fse.Superellipsoid((1.0, 0.7, 0.5), (0.5, 1.5))
+    b = fse.Box(1.0, 1.0, 1.0)
+    pose = (np.eye(3), [0.3, 0.2, 0.9])  # overlapping
+    d12 = fse.distance(s, None, b, pose)
+    d21 = fse.distance(b, pose, s, None)
+    assert d12.distance < 0 and d12.distance == pytest.approx(d21.distance, abs=1e-12)
+    np.testing.assert_allclose(d12.normal, -d21.normal, atol=1e-9)
+    np.testing.assert_allclose(d12.point1 - d12.point2, -d12.distance * d12.normal, atol=1e-9)
+    c12, c21 = fse.collide(s, None, b, pose), fse.collide(b, pose, s, None)
+    assert len(c12) == len(c21) == 1
+    np.testing.assert_allclose(c12[0].normal, -c21[0].normal, atol=1e-9)
+    assert c12[0].depth == pytest.approx(-d12.distance, abs=1e-12)
+
+
+def test_two_superellipsoids_and_a_convex_polytope():
+    s = fse.Superellipsoid((1.0, 1.0, 1.0), (1.0, 1.0))
+    t = fse.Superellipsoid((0.5, 0.5, 0.5), (1.0, 1.0))
+    d = fse.distance(s, None, t, (np.eye(3), [3.0, 0.0, 0.0]))
+    assert d.distance == pytest.approx(1.5, abs=1e-12)
+    cube = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], dtype=float)
+    faces = np.array([[0, 1, 3, 2], [4, 6, 7, 5], [0, 4, 5, 1], [2, 3, 7, 6], [0, 2, 6, 4],
+                      [1, 5, 7, 3]])
+    convex = fse.Convex(cube * 0.5, faces)
+    d = fse.distance(s, None, convex, (np.eye(3), [2.0, 0.0, 0.0]))
+    assert d.distance == pytest.approx(0.5, abs=1e-12)
+    vertices, triangles = fse.Superellipsoid((0.5, 0.5, 0.5), (1.0, 1.0)).tessellate(100)
+    d = fse.distance(s, None, fse.Convex(vertices, triangles), (np.eye(3), [0.0, 0.0, 2.0]))
+    assert d.distance == pytest.approx(0.5, abs=1e-3)  # the mesh's poles are on the axis
+    tri = fse.Triangle([3.0, -1.0, -1.0], [3.0, 1.0, -1.0], [3.0, 0.0, 1.0])
+    assert fse.distance(s, None, tri, None).distance == pytest.approx(2.0, abs=1e-12)
+    plane = fse.Plane([0.0, 0.0, 2.0], 1.0)  # z = 0.5: straddled, pushed out the short way
+    assert fse.distance(s, None, plane, None).distance == pytest.approx(-0.5, abs=1e-12)
+
+
+def test_touching_shapes_have_a_normal():
+    s = fse.Superellipsoid((1.0, 1.0, 1.0), (1.0, 1.0))
+    d = fse.distance(s, None, fse.Halfspace([-1.0, 0.0, 0.0], -1.0), None)
+    assert d.distance == pytest.approx(0.0, abs=1e-15)
+    assert np.all(np.isfinite(d.normal)) and np.linalg.norm(d.normal) == pytest.approx(1.0)
+
+
+@pytest.mark.parametrize(
+    "make,error,message",
+    [
+        (lambda: fse.Box(1.0, -1.0, 1.0), ValueError, "Box: y must be finite and > 0, got -1"),
+        (lambda: fse.Sphere(float("nan")), ValueError, "Sphere: radius"),
+        (lambda: fse.Capsule(1.0, 0.0), ValueError, "Capsule: length"),
+        (lambda: fse.Cone(float("inf"), 1.0), ValueError, "Cone: radius"),
+        (lambda: fse.Cylinder(0.0, 1.0), ValueError, "Cylinder: radius"),
+        (lambda: fse.Ellipsoid(1.0, 1.0, -2.0), ValueError, "Ellipsoid: c"),
+        (lambda: fse.Halfspace([0.0, 0.0, 0.0], 1.0), ValueError, "non-zero"),
+        (lambda: fse.Plane([0.0, 1.0, 0.0], float("nan")), ValueError, "offset"),
+        (lambda: fse.Triangle([0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]), ValueError,
+         "expected 3 numbers"),
+        (lambda: fse.Convex(np.zeros((3, 3)), np.zeros((4, 3), dtype=int)), ValueError, "N >= 4"),
+        (lambda: fse.Convex(np.eye(4, 3), np.array([[0, 1, 9]] * 4)), ValueError,
+         r"faces\[0, 2\] = 9 is not a vertex index"),
+        (lambda: fse.Convex(np.eye(4, 3), np.zeros((4, 3))), TypeError, "integers"),
+    ],
+)
+def test_bad_shapes_raise(make, error, message):
+    with pytest.raises(error, match=message):
+        make()
+
+
+def test_bad_pair_calls_raise():
+    s = fse.Superellipsoid((1.0, 1.0, 1.0), (1.0, 1.0))
+    with pytest.raises(TypeError, match="one of the two shapes must be a Superellipsoid"):
+        fse.distance(fse.Box(1, 1, 1), None, fse.Sphere(1), None)
+    with pytest.raises(TypeError):
+        fse.distance(s, None, "box", None)
+    with pytest.raises(ValueError, match="pose2"):
+        fse.distance(s, None, fse.Sphere(1.0), np.ones((4, 4)))
+    with pytest.raises(ValueError, match="max_contacts must be >= 1"):
+        fse.collide(s, None, fse.Sphere(1.0), None, max_contacts=0)

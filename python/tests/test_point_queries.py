@@ -1,0 +1,249 @@
+"""Point queries on arrays: answers against construction, every dtype, stride and shape case,
+poses, methods, the margin form, and every error."""
+import gc
+
+import numpy as np
+import pytest
+
+import fcl_superellipsoid as fse
+
+from conftest import outside_points, random_rotation, unit_directions
+
+
+def test_outside_distances_match_the_construction(shape):
+    points, d, surface, u = outside_points(shape, 500, seed=11)
+    q = shape.closest_points(points)
+    np.testing.assert_allclose(q.distance, d, rtol=0, atol=1e-9 * shape.size)
+    np.testing.assert_allclose(q.nearest_point, surface, rtol=0, atol=1e-9 * shape.size)
+    np.testing.assert_allclose(q.normal, u, rtol=0, atol=1e-7)
+    np.testing.assert_allclose(shape.signed_distance(points), q.distance, rtol=0, atol=0)
+
+
+def test_a_spheres_inside_and_outside_distances():
+    s = fse.Superellipsoid((2.0, 2.0, 2.0), (1.0, 1.0))
+    rng = np.random.default_rng(5)
+    p = rng.uniform(-4, 4, size=(2000, 3))
+    r = np.linalg.norm(p, axis=1)
+    q = s.closest_points(p)
+    np.testing.assert_allclose(q.distance, r - 2.0, atol=1e-12)
+    np.testing.assert_allclose(q.nearest_point, 2.0 * p / r[:, None], atol=1e-12)
+    np.testing.assert_allclose(q.normal, p / r[:, None], atol=1e-12)
+
+
+def test_float32_points_run_in_float_and_agree_to_its_precision(shape):
+    points, d, _, _ = outside_points(shape, 300, seed=12)
+    q32 = shape.closest_points(points.astype(np.float32))
+    assert q32.distance.dtype == np.float32 and q32.nearest_point.dtype == np.float32
+    np.testing.assert_allclose(q32.distance, d, rtol=0, atol=1e-4 * shape.size)
+
+
+LAYOUTS = {
+    "fortran": lambda p: np.asfortranarray(p),
+    "every other row": lambda p: np.repeat(p, 2, axis=0)[::2],
+    "negative strides": lambda p: np.ascontiguousarray(p[::-1])[::-1],
+    "padded rows": lambda p: np.hstack([p, np.zeros((len(p), 2))])[:, :3],
+    "read-only": lambda p: _read_only(p),
+    "unaligned": lambda p: _unaligned(p),
+    "list": lambda p: p.tolist(),
+    "columns of a transposed array": lambda p: np.ascontiguousarray(p.T).T,
+}
+
+
+def _read_only(p):
+    q = p.copy()
+    q.setflags(write=False)
+    return q
+
+
+def _unaligned(p):
+    buffer = np.zeros(p.size * 8 + 1, dtype=np.uint8)
+    q = np.frombuffer(buffer.data, dtype=np.float64, count=p.size, offset=1).reshape(p.shape)
+    q[...] = p
+    assert not q.flags.aligned
+    return q
+
+
+@pytest.mark.parametrize("layout", sorted(LAYOUTS))
+def test_every_layout_gives_the_answers_of_a_contiguous_array(layout):
+    s = fse.Superellipsoid((3.5, 3.0, 2.0), (0.4, 0.3))
+    p = np.random.default_rng(7).uniform(-5, 5, size=(300, 3))
+    expected = s.closest_points(p)
+    q = s.closest_points(LAYOUTS[layout](p))
+    for a, b in zip(q, expected):
+        np.testing.assert_array_equal(a, b)
+
+
+def test_a_broadcast_array_reads_its_one_row_everywhere():
+    s = fse.Superellipsoid((3.5, 3.0, 2.0), (0.4, 0.3))
+    row = np.array([4.0, 1.0, 0.5])
+    broadcast = np.broadcast_to(row, (50, 3))
+    assert broadcast.strides[0] == 0
+    np.testing.assert_array_equal(s.signed_distance(broadcast), s.signed_distance(broadcast.copy()))
+
+
+def test_integer_points_are_read_as_float64():
+    s = fse.Superellipsoid((1.0, 1.0, 1.0), (1.0, 1.0))
+    d = s.signed_distance(np.array([[3, 0, 0], [0, 0, 0]], dtype=np.int32))
+    assert d.dtype == np.float64 and d[0] == 2.0 and d[1] == pytest.approx(-1.0, abs=1e-15)
+
+
+def test_one_point_and_no_points():
+    s = fse.Superellipsoid((1.0, 1.0, 1.0), (1.0, 1.0))
+    d = s.signed_distance([3.0, 0.0, 0.0])
+    assert isinstance(d, float) and d == 2.0
+    q = s.closest_points(np.array([0.0, 3.0, 0.0], dtype=np.float32))
+    assert isinstance(q.distance, float) and q.nearest_point.shape == (3,)
+    assert q.nearest_point.dtype == np.float32
+    empty = s.closest_points(np.zeros((0, 3)))
+    assert empty.distance.shape == (0,) and empty.nearest_point.shape == (0, 3)
+    assert s.within_margin(np.zeros((0, 3)), 1.0).index.shape == (0,)
+
+
+def test_results_outlive_each_other():
+    s = fse.Superellipsoid((1.0, 1.0, 1.0), (1.0, 1.0))
+    p = np.array([[3.0, 0.0, 0.0]] * 100)
+    q = s.closest_points(p)
+    distance, normal = q.distance, q.normal
+    del q
+    gc.collect()
+    assert distance.tolist() == [2.0] * 100 and normal[:, 0].tolist() == [1.0] * 100
+    assert not distance.flags.writeable or distance.base is not None
+
+
+@pytest.mark.parametrize("form", ["matrix", "pair"])
+def test_a_pose_moves_the_shape(shape, form):
+    R, t = random_rotation(3), np.array([0.5, -2.0, 7.0])
+    pose = (R, t) if form == "pair" else np.block([[R, t[:, None]], [np.zeros((1, 3)), 1.0]])
+    points, d, surface, u = outside_points(shape, 200, seed=13)
+    world = points @ R.T + t
+    q = shape.closest_points(world, pose)
+    np.testing.assert_allclose(q.distance, d, rtol=0, atol=1e-9 * (shape.size + 10))
+    np.testing.assert_allclose(q.nearest_point, surface @ R.T + t, atol=1e-9 * (shape.size + 10))
+    np.testing.assert_allclose(q.normal, u @ R.T, atol=1e-7)
+
+
+def test_the_two_pose_forms_agree_bitwise():
+    s = fse.Superellipsoid((3.5, 3.0, 2.0), (0.4, 0.3))
+    R, t = random_rotation(4), np.array([1.0, 2.0, 3.0])
+    X = np.eye(4)
+    X[:3, :3], X[:3, 3] = R, t
+    p = np.random.default_rng(8).uniform(-6, 6, size=(100, 3))
+    np.testing.assert_array_equal(s.signed_distance(p, X), s.signed_distance(p, (R, t)))
+    np.testing.assert_array_equal(s.signed_distance(p, pose=None), s.signed_distance(p, np.eye(4)))
+
+
+@pytest.mark.parametrize("method,tolerance", [("paper", 1e-3), ("radial", None)])
+def test_other_methods(shape, method, tolerance):
+    points, d, _, _ = outside_points(shape, 200, seed=14)
+    q = shape.closest_points(points, method=method)
+    assert np.all(np.isfinite(q.distance)) and np.all(q.distance > 0)
+    np.testing.assert_allclose(np.linalg.norm(q.normal, axis=1), 1.0, atol=1e-9)
+    assert np.all(q.distance >= d - 1e-9 * shape.size)  # never nearer than the nearest point
+    if tolerance is not None:  # the paper's method converges to its tolerance on most points
+        assert np.median(np.abs(q.distance - d)) <= 10 * tolerance * shape.size
+
+
+def test_options_are_passed():
+    s = fse.Superellipsoid((3.5, 3.0, 2.0), (0.4, 0.3))
+    p = np.random.default_rng(9).uniform(-5, 5, size=(3000, 3))
+    exact = s.signed_distance(p)
+    loose = s.signed_distance(p, tolerance=1e-4)
+    assert np.max(np.abs(loose - exact)) > 0  # a looser solve, a different answer
+    np.testing.assert_allclose(loose, exact, rtol=0, atol=1e-3 * s.size)
+    capped = s.closest_points(p, max_iterations=1, vectorize=False)
+    assert np.max(np.abs(capped.distance - exact)) > 0 and np.all(np.isfinite(capped.distance))
+    scalar = s.signed_distance(p, vectorize=False, threads=1)
+    one_by_one = np.array([s.signed_distance(x) for x in p[:200]])
+    np.testing.assert_array_equal(scalar[:200], one_by_one)
+    np.testing.assert_array_equal(s.signed_distance(p, threads=1), s.signed_distance(p, threads=2))
+
+
+def test_within_margin_is_the_subset_of_the_distances():
+    s = fse.Superellipsoid((3.5, 3.0, 2.0), (0.4, 0.3))
+    p = np.random.default_rng(10).uniform(-6, 6, size=(5000, 3))
+    all_points = s.closest_points(p)
+    m = s.within_margin(p, 0.5)
+    expected = np.flatnonzero(all_points.distance <= 0.5)
+    np.testing.assert_array_equal(m.index, expected)
+    assert m.index.dtype == np.int64
+    np.testing.assert_allclose(m.distance, all_points.distance[expected], atol=1e-12 * s.size)
+    np.testing.assert_allclose(m.nearest_point, all_points.nearest_point[expected], atol=1e-9)
+    m32 = s.within_margin(p.astype(np.float32), 0.5)
+    assert m32.distance.dtype == np.float32
+
+
+BAD_POINTS = [
+    (np.zeros((4, 2)), ValueError, r"expected shape \(N, 3\) or \(3,\), got \(4, 2\)"),
+    (np.zeros((2, 3, 3)), ValueError, r"got \(2, 3, 3\)"),
+    (np.zeros(4), ValueError, r"got \(4,\)"),
+    (np.float64(1.0), ValueError, r"got \(\)"),
+    (np.zeros((3, 3), dtype=np.complex128), TypeError, "complex128"),
+    (np.zeros((3, 3), dtype=np.float16), TypeError, "float16"),
+    (np.zeros((3, 3), dtype=bool), TypeError, "bool"),
+    (np.array([["a", "b", "c"]]), TypeError, "<U1"),
+    (np.array([[0.0, np.nan, 0.0]]), ValueError, "vertex 0 must be finite"),
+    (np.array([[0.0, 0.0, 0.0], [np.inf, 0.0, 0.0]], dtype=np.float32), ValueError, "vertex 1"),
+    (np.array([np.nan, 0.0, 0.0]), ValueError, "finite"),
+    ("abc", TypeError, "dtype"),
+    (None, TypeError, "dtype"),
+    (np.zeros(3, dtype=[("a", "f8")]), TypeError, "dtype"),
+    (np.array([[1.0, 2.0, 3.0], None], dtype=object), TypeError, "object"),
+    (np.zeros((0, 4)), ValueError, r"got \(0, 4\)"),
+    (np.zeros((1, 3, 1)), ValueError, r"got \(1, 3, 1\)"),
+    (np.array([[1e308, 0.0, 0.0]]), ValueError, "vertex 0"),
+]
+
+
+@pytest.mark.parametrize("points,error,message", BAD_POINTS, ids=lambda x: str(x)[:20])
+def test_bad_points_raise(points, error, message):
+    s = fse.Superellipsoid((1.0, 1.0, 1.0), (1.0, 1.0))
+    for query in (s.signed_distance, s.closest_points, lambda p: s.within_margin(p, 0.1)):
+        with pytest.raises(error, match=message):
+            query(points)
+
+
+BAD_OPTIONS = [
+    (dict(method="fast"), ValueError, "method must be 'exact', 'paper' or 'radial', got 'fast'"),
+    (dict(tolerance=-1.0), ValueError, "tolerance must be finite and > 0, got -1"),
+    (dict(tolerance=float("nan")), ValueError, "tolerance"),
+    (dict(max_iterations=0), ValueError, "max_iterations must be >= 1"),
+    (dict(threads=-1), ValueError, "threads must be >= 0"),
+    (dict(pose=np.eye(3)), ValueError, r"\(4, 4\) matrix or a pair"),
+    (dict(pose=2 * np.eye(4)), ValueError, "last row"),
+    (dict(pose=(2 * np.eye(3), np.zeros(3))), ValueError, "not a rotation"),
+    (dict(pose=(np.diag([1.0, 1.0, -1.0]), np.zeros(3))), ValueError, "det R = -1"),
+    (dict(pose=(np.eye(3), [0.0, np.nan, 0.0])), ValueError, "finite"),
+    (dict(pose=(np.eye(3), np.zeros(2))), ValueError, r"t of shape \(3,\)"),
+    (dict(pose="identity"), TypeError, "real numbers"),
+    (dict(method=3), TypeError, "incompatible"),
+]
+
+
+@pytest.mark.parametrize("options,error,message", BAD_OPTIONS, ids=lambda x: str(x)[:30])
+def test_bad_options_raise(options, error, message):
+    s = fse.Superellipsoid((1.0, 1.0, 1.0), (1.0, 1.0))
+    for points in (np.ones((5, 3)), np.ones(3), np.ones((5, 3), dtype=np.float32)):
+        with pytest.raises(error, match=message):
+            s.signed_distance(points, **options)
+
+
+def test_bad_margin():
+    s = fse.Superellipsoid((1.0, 1.0, 1.0), (1.0, 1.0))
+    with pytest.raises(ValueError, match="margin"):
+        s.within_margin(np.ones((5, 3)), float("nan"))
+
+
+def test_float_range_is_checked_for_float32_points():
+    s = fse.Superellipsoid((1e-20, 1e-20, 1e-20), (1.0, 1.0))  # fine in double
+    assert s.signed_distance(np.ones((2, 3)))[0] > 0
+    with pytest.raises(ValueError, match="supported range"):
+        s.signed_distance(np.ones((2, 3), dtype=np.float32))
+
+
+def test_never_nan_on_extreme_points(shape):
+    u = unit_directions(50, seed=15)
+    for scale in (1e-300, 1e-12, 1.0, 1e6, 1e150):
+        p = u * scale * shape.size
+        d = shape.signed_distance(p)
+        assert np.all(np.isfinite(d))
+    assert np.isfinite(shape.signed_distance(np.zeros(3)))
