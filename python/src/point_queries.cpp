@@ -12,6 +12,7 @@
 
 #include "arrays.h"
 #include "bindings.h"
+#include "result_buffers.h"
 
 namespace fcl_superellipsoid {
 namespace python {
@@ -85,15 +86,16 @@ py::object pointQuery(const PythonShape& python_shape, const py::array& array,
     }
     return point_query_type(r.distance, nearest, normal);
   }
-  auto result = std::make_unique<BatchDistanceResult<S>>();
+  const Eigen::Index n = points.count();
+  std::unique_ptr<BatchDistanceResult<S>> result = ResultBuffers<S>::take(n);
   {
     py::gil_scoped_release release;
     batchDistance(shape, X_WS, points.view(), *result, options);
   }
-  const Eigen::Index n = points.count();
   const BatchDistanceResult<S>* r = result.get();
-  py::capsule owner(result.release(),
-                    [](void* p) { delete static_cast<BatchDistanceResult<S>*>(p); });
+  py::capsule owner(result.release(), [](void* p) {
+    ResultBuffers<S>::give(static_cast<BatchDistanceResult<S>*>(p));
+  });
   py::array_t<S> distance = arrayOver(r->distance.data(), n, false, owner);
   if (answer == Answer::kDistance) return std::move(distance);
   return point_query_type(distance, arrayOver(r->nearest_point.data(), n, true, owner),

@@ -110,6 +110,21 @@ def test_results_outlive_each_other():
     assert not distance.flags.writeable or distance.base is not None
 
 
+def test_recycled_result_buffers_are_never_shared():
+    """A result's buffers are reused by a later call of the same size only once every array
+    over them is gone (python/src/result_buffers.h)."""
+    s = fse.Superellipsoid((1.0, 1.0, 1.0), (1.0, 1.0))
+    near, far = np.full((2000, 3), 1.0), np.full((2000, 3), 5.0)
+    expected_near, expected_far = np.sqrt(3.0) - 1.0, 5.0 * np.sqrt(3.0) - 1.0
+    kept = [s.signed_distance(near) for _ in range(4)]
+    normals = s.closest_points(far).normal  # the other arrays of its result are dropped
+    for _ in range(6):  # results dropped at once: their buffers come back and are reused
+        np.testing.assert_allclose(s.signed_distance(far), expected_far, rtol=1e-14)
+    for d in kept:
+        np.testing.assert_allclose(d, expected_near, rtol=1e-14)
+    np.testing.assert_allclose(normals, 1.0 / np.sqrt(3.0), rtol=1e-14)
+
+
 @pytest.mark.parametrize("form", ["matrix", "pair"])
 def test_a_pose_moves_the_shape(shape, form):
     R, t = random_rotation(3), np.array([0.5, -2.0, 7.0])
