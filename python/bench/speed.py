@@ -92,15 +92,16 @@ def measure(baseline, sizes, reps, rounds, work):
         row = {"shape": name, "radii": radii, "exponents": exponents, "batch": []}
         for n in sizes:
             points = cloud(shape, n, seed=n)
-            python_times, cpp_times, cpp_1 = [], [], []
+            python_times, cpp_times, python_1, cpp_1 = [], [], [], []
             for _ in range(rounds):  # alternate, so both see the same machine
                 c = cpp_baseline(baseline, points, radii, exponents, reps, work)
                 cpp_times.append(c["batch"])
                 cpp_1.append(c["batch_1_thread"])
                 python_times.append(best(reps, lambda: shape.signed_distance(points)) / n * 1e9)
-            py_1 = best(reps, lambda: shape.signed_distance(points, threads=1)) / n * 1e9
+                python_1.append(best(reps, lambda: shape.signed_distance(points, threads=1)) /
+                                n * 1e9)
             row["batch"].append({"n": n, "python_ns": min(python_times), "cpp_ns": min(cpp_times),
-                                 "python_1_thread_ns": py_1, "cpp_1_thread_ns": min(cpp_1)})
+                                 "python_1_thread_ns": min(python_1), "cpp_1_thread_ns": min(cpp_1)})
         # One point per call: a Python loop over (3,) rows against a C++ loop over columns.
         points = cloud(shape, 20000, seed=7)
         rows_of = list(points)
