@@ -45,11 +45,16 @@ struct Frame {
 };
 
 /// The JSON string literal at text[at] (at its opening quote), decoded, and the index past it.
+/// The text has parsed, so the literal is complete and valid; were it not, the raw characters
+/// stand for it (no key of the parsed document can then be confused with it).
 std::pair<std::string, std::size_t> stringAt(const std::string& text, std::size_t at) {
   std::size_t end = at + 1;
   while (end < text.size() && text[end] != '"') end += text[end] == '\\' ? 2 : 1;
+  if (end >= text.size()) return {text.substr(at), text.size()};
   const std::string literal = text.substr(at, end + 1 - at);
-  return {nlohmann::json::parse(literal).get<std::string>(), end + 1};
+  const auto decoded = nlohmann::json::parse(literal, nullptr, false);
+  if (!decoded.is_string()) return {literal, end + 1};
+  return {decoded.get<std::string>(), end + 1};
 }
 
 }  // namespace

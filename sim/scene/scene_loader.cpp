@@ -467,6 +467,15 @@ std::string directoryOf(const std::string& path) {
 
 Scene parseSceneIn(const std::string& text, const std::string& source,
                    const std::string& directory) {
+  // A NUL byte ends nlohmann's input: what follows would be ignored, not read. JSON text has
+  // none, so a file with one is refused where it is.
+  if (const auto nul = text.find('\0'); nul != std::string::npos) {
+    const long line = 1 + std::count(text.begin(), text.begin() + long(nul), '\n');
+    const auto line_start = text.rfind('\n', nul);
+    const long column = long(nul - (line_start == std::string::npos ? 0 : line_start + 1)) + 1;
+    throw SceneError(source + ": invalid JSON at line " + std::to_string(line) + ", column " +
+                     std::to_string(column) + ": a NUL byte");
+  }
   json document;
   try {
     document = json::parse(text);

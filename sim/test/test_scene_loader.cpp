@@ -308,6 +308,15 @@ TEST(SceneLoaderTest, KeyGivenTwiceIsRefusedWithBothLines) {
              "test.json");
 }
 
+// nlohmann's reader stops at a NUL byte: a scene followed by one and anything at all would be
+// read as the scene alone. Refused where the byte is (found by fuzz_scene_loader: the
+// duplicate-key scan went on past it into an unterminated string).
+TEST(SceneLoaderTest, ANulByteIsRefusedWhereItIs) {
+  const std::string nul(1, '\0');
+  EXPECT_REFUSED(kValid + nul + "{\"garbage", "line 8, column 2", "NUL byte");
+  EXPECT_REFUSED("2222222222" + nul + nul + "\"\\/\\/22222\xb2", "line 1, column 11", "NUL byte");
+}
+
 // What a scene makes the run hold is refused at load time, naming the limit: the steps
 // (duration / step: each is recorded), the bodies' tessellations, the bowl's vertices.
 TEST(SceneLoaderTest, RunsTooLargeToHoldAreRefusedAtLoadTime) {
