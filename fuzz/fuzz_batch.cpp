@@ -77,26 +77,29 @@ void run(FuzzedDataProvider& in) {
     const auto single =
         fcl_superellipsoid::pointDistance(*shape, X_WS, Vector3<S>(p_WV.col(i)), options.distance);
     // (The single answer's nearest point and normal are printed in the world frame.)
-    const std::string what =
-        "vertex " + std::to_string(i) + ", batch distance " + std::to_string(d) + " (simd " +
-        std::to_string(simd) + "); single: " +
-        fuzz::describe(*shape, Vector3<S>(X_SW * p_WV.col(i)), options.distance, single);
-    fuzz::require(std::isfinite(d) && N.allFinite() && normal.allFinite(), "not finite: " + what);
-    fuzz::require(std::abs(normal.norm() - S(1)) <= S(64) * eps, "normal not unit: " + what);
+    const auto what = [&](const char* broken) {  // the message, formatted only if it broke
+      return [&, broken] {
+        return std::string(broken) + ": vertex " + std::to_string(i) + ", batch distance " +
+               std::to_string(d) + " (simd " + std::to_string(simd) + "); single: " +
+               fuzz::describe(*shape, Vector3<S>(X_SW * p_WV.col(i)), options.distance, single);
+      };
+    };
+    fuzz::require(std::isfinite(d) && N.allFinite() && normal.allFinite(), what("not finite"));
+    fuzz::require(std::abs(normal.norm() - S(1)) <= S(64) * eps, what("normal not unit"));
     // On the surface, up to the rounding of the pose: moving a point by δ moves the gauge by at
     // most √3·δ/(smallest radius).
     const S pose_rounding = S(16) * eps * reach * S(1.8) / shape->radii().minCoeff();
     fuzz::require(std::abs(shape->gauge(X_SW * N) - S(1)) <=
                       (sizeof(S) == 4 ? S(1e-3) : S(1e-8)) + pose_rounding,
-                  "nearest point not on the surface: " + what);
+                  what("nearest point not on the surface"));
     fuzz::require(std::abs((Vector3<S>(p_WV.col(i)) - N).norm() - std::abs(d)) <= S(4) * abs_tol,
-                  "|Q - N| != |distance|: " + what);
+                  what("|Q - N| != |distance|"));
     if (!simd && options.warm_start_W == nullptr) {
       fuzz::require(d == single.distance && N == single.nearest_point,
-                    "scalar batch != single query: " + what);
+                    what("scalar batch != single query"));
     } else if (fuzz::inFullAccuracyRange(*shape) && single.converged) {
       fuzz::require(std::abs(d - single.distance) <= S(4) * abs_tol + S(4) * single.error,
-                    "batch disagrees with the single query: " + what);
+                    what("batch disagrees with the single query"));
     }
   }
 
@@ -114,19 +117,20 @@ void run(FuzzedDataProvider& in) {
     fuzz::require(c.distance <= margin, "contact beyond the margin");
     // The scalar path is deterministic; SIMD lanes may settle differently within the tolerance.
     if (!simd) {
-      fuzz::require(c.distance == result.distance[c.index],
-                    "contact distance != batchDistance's, vertex " + std::to_string(c.index));
+      fuzz::require(c.distance == result.distance[c.index], [&] {
+        return "contact distance != batchDistance's, vertex " + std::to_string(c.index);
+      });
     } else if (fuzz::inFullAccuracyRange(*shape)) {
-      fuzz::require(
-          std::abs(c.distance - result.distance[c.index]) <= S(4) * abs_tol,
-          "contact distance disagrees with batchDistance, vertex " + std::to_string(c.index));
+      fuzz::require(std::abs(c.distance - result.distance[c.index]) <= S(4) * abs_tol, [&] {
+        return "contact distance disagrees with batchDistance, vertex " + std::to_string(c.index);
+      });
     }
   }
   for (int i = 0; i < n; ++i) {
     const S band = simd ? S(8) * abs_tol : S(0);
     if (result.distance[i] <= margin - band && (!simd || fuzz::inFullAccuracyRange(*shape))) {
       fuzz::require(listed[std::size_t(i)],
-                    "missed vertex " + std::to_string(i) + " within the margin");
+                    [&] { return "missed vertex " + std::to_string(i) + " within the margin"; });
     }
   }
 }

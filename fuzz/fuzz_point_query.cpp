@@ -44,7 +44,9 @@ void run(FuzzedDataProvider& in) {
         std::isfinite(options.tolerance) && options.tolerance > S(0) && options.max_iterations >= 1;
     try {
       const auto r = fcl_superellipsoid::pointDistance(*shape, p, options);
-      fuzz::require(valid, "accepted invalid input: " + fuzz::describe(*shape, p, options, r));
+      fuzz::require(valid, [&] {
+        return "accepted invalid input: " + fuzz::describe(*shape, p, options, r);
+      });
       fuzz::checkPointContract(*shape, p, options, r);
     } catch (const std::invalid_argument& e) {
       fuzz::require(!valid, std::string("refused valid input: ") + e.what());

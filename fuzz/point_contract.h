@@ -46,8 +46,8 @@ bool inFullAccuracyRange(const Superellipsoid<S>& shape) {
 template <typename S>
 void checkPointContract(const Superellipsoid<S>& shape, const Vector3<S>& p_S,
                         const DistanceOptions<S>& options, const PointDistanceResult<S>& r) {
-  const auto what = [&](const char* broken) {
-    return std::string(broken) + ": " + describe(shape, p_S, options, r);
+  const auto what = [&](const char* broken) {  // the message, formatted only if it broke
+    return [&, broken] { return std::string(broken) + ": " + describe(shape, p_S, options, r); };
   };
   const S eps = std::numeric_limits<S>::epsilon();
   require(std::isfinite(r.distance) && r.nearest_point.allFinite() && r.normal.allFinite() &&
