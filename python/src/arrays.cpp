@@ -38,13 +38,8 @@ py::array_t<double> doublesOf(const py::handle& values, const char* name) {
 }  // namespace
 
 std::pair<py::array, Precision> pointsArray(const py::handle& points, const char* name) {
-  py::array array;
-  if (py::isinstance<py::array>(points)) {
-    array = py::reinterpret_borrow<py::array>(points);
-  } else {
-    array = py::array::ensure(points);
-    if (!array) throw py::type_error(std::string(name) + ": expected an array of points");
-  }
+  py::array array = py::array::ensure(points);  // an array as it is; anything else through numpy
+  if (!array) throw py::type_error(std::string(name) + ": expected an array of points");
   const py::dtype dtype = array.dtype();
   Precision precision = Precision::kDouble;
   if (dtype.is(py::dtype::of<float>())) {

@@ -33,7 +33,6 @@ class PointColumns {
   Eigen::Index count() const { return view_.cols(); }
   bool single() const { return single_; }  ///< given as one point of shape (3,)
   const View& view() const { return view_; }
-  bool copied() const { return copy_.size() != 0; }
 
  private:
   static View viewOf(const py::array& array, Matrix& copy, bool& single);

@@ -5,7 +5,9 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <cstring>
 #include <sstream>
+#include <vector>
 
 #include "arrays.h"
 #include "bindings.h"
@@ -21,27 +23,7 @@ std::shared_ptr<PythonShape> makeShape(const py::handle& radii, const py::handle
   return std::make_shared<PythonShape>(Eigen::Vector3d(r), e(0), e(1));
 }
 
-/// Applies `f` (a Vector3d → Vector3d map) to each row of an (N, 3) or (3,) array.
-template <typename F>
-py::array_t<double> mapRows(const py::handle& values, const char* name, F f) {
-  auto [array, precision] = pointsArray(values, name);
-  py::array_t<double> input = py::array_t<double, py::array::forcecast>::ensure(array);
-  const bool single = input.ndim() == 1;
-  const py::ssize_t n = single ? 1 : input.shape(0);
-  py::array_t<double> out =
-      single ? py::array_t<double>(3) : py::array_t<double>({n, py::ssize_t{3}});
-  auto in = input.unchecked();
-  double* o = out.mutable_data();
-  for (py::ssize_t i = 0; i < n; ++i) {
-    Eigen::Vector3d v;
-    for (int k = 0; k < 3; ++k) v(k) = single ? in.data(k)[0] : in.data(i, k)[0];
-    const Eigen::Vector3d w = f(v, i);
-    for (int k = 0; k < 3; ++k) o[3 * i + k] = w(k);
-  }
-  return out;
-}
-
-void checkFinite(const Eigen::Vector3d& v, py::ssize_t i, const char* name) {
+void checkFinite(const Eigen::Vector3d& v, Eigen::Index i, const char* name) {
   if (!v.allFinite()) {
     std::ostringstream text;
     text.precision(17);
@@ -49,6 +31,21 @@ void checkFinite(const Eigen::Vector3d& v, py::ssize_t i, const char* name) {
          << ")";
     throw py::value_error(text.str());
   }
+}
+
+/// Calls f(v) for each row v of an (N, 3) or (3,) array, read as double and checked finite;
+/// returns whether it was one (3,) point.
+template <typename F>
+bool forEachRow(const py::handle& values, const char* name, F f) {
+  const py::array array =
+      py::array_t<double, py::array::forcecast>::ensure(pointsArray(values, name).first);
+  const PointColumns<double> rows(array);  // a view of `array`, which outlives it here
+  for (Eigen::Index i = 0; i < rows.count(); ++i) {
+    const Eigen::Vector3d v = rows.view().col(i);
+    checkFinite(v, i, name);
+    f(v);
+  }
+  return rows.single();
 }
 
 }  // namespace
@@ -82,11 +79,17 @@ Raises ValueError naming a bad value.)doc");
   shape.def(
       "support",
       [](const PythonShape& s, const py::handle& directions) {
-        py::array_t<double> out = mapRows(directions, "support: directions",
-                                          [&](const Eigen::Vector3d& d, py::ssize_t i) {
-                                            checkFinite(d, i, "support: directions");
-                                            return Eigen::Vector3d(s.supportPoint(d));
-                                          });
+        std::vector<Eigen::Vector3d> support;
+        const bool single =
+            forEachRow(directions, "support: directions",
+                       [&](const Eigen::Vector3d& u) { support.push_back(s.supportPoint(u)); });
+        const auto n = static_cast<py::ssize_t>(support.size());
+        py::array_t<double> out =
+            single ? py::array_t<double>(3) : py::array_t<double>({n, py::ssize_t{3}});
+        for (py::ssize_t i = 0; i < n; ++i) {
+          std::memcpy(out.mutable_data() + 3 * i, support[std::size_t(i)].data(),
+                      3 * sizeof(double));
+        }
         return out;
       },
       py::arg("directions"), R"doc(
@@ -96,19 +99,13 @@ gives (a1, 0, 0).)doc");
   shape.def(
       "contains",
       [](const PythonShape& s, const py::handle& points) -> py::object {
-        auto [array, precision] = pointsArray(points, "contains: points");
-        py::array_t<double> input = py::array_t<double, py::array::forcecast>::ensure(array);
-        const bool single = input.ndim() == 1;
-        const py::ssize_t n = single ? 1 : input.shape(0);
-        py::array_t<bool> out(n);
-        auto in = input.unchecked();
-        for (py::ssize_t i = 0; i < n; ++i) {
-          Eigen::Vector3d p;
-          for (int k = 0; k < 3; ++k) p(k) = single ? in.data(k)[0] : in.data(i, k)[0];
-          checkFinite(p, i, "contains: points");
-          out.mutable_at(i) = s.contains(p);
-        }
-        if (single) return py::bool_(out.at(0));
+        std::vector<bool> inside;
+        const bool single = forEachRow(points, "contains: points", [&](const Eigen::Vector3d& p) {
+          inside.push_back(s.contains(p));
+        });
+        if (single) return py::bool_(inside[0]);
+        py::array_t<bool> out(static_cast<py::ssize_t>(inside.size()));
+        for (std::size_t i = 0; i < inside.size(); ++i) out.mutable_at(py::ssize_t(i)) = inside[i];
         return std::move(out);
       },
       py::arg("points"),
