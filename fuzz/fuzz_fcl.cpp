@@ -121,9 +121,11 @@ std::shared_ptr<fcl::CollisionGeometry<S>> makeShapePartner(FuzzedDataProvider& 
           std::vector<int>{3, 0, 1, 2, 3, 0, 3, 1, 3, 0, 2, 3, 3, 1, 3, 2});
       return std::make_shared<fcl::Convex<S>>(v, 4, faces);
     }
-    default:
-      return std::make_shared<fcl::TriangleP<S>>(anyPoint<S>(in, size), anyPoint<S>(in, size),
-                                                 anyPoint<S>(in, size));
+    default: {  // sized like the others (down to degenerate, up to any scalar)
+      const S reach = size * fuzz::aroundOne<S>(in, 4);
+      return std::make_shared<fcl::TriangleP<S>>(anyPoint<S>(in, reach), anyPoint<S>(in, reach),
+                                                 anyPoint<S>(in, reach));
+    }
   }
 }
 

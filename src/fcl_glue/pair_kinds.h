@@ -56,7 +56,8 @@ struct PairKind {
 
 // --- The checks of the other geometry's parameters ----------------------------------------
 // Parameters that are not finite, a negative length, or a length or coordinate beyond a
-// sixteenth of the largest finite value are refused (its features' coordinates, sums of a few
+// sixteenth of the largest finite value (an ellipsoid's radii: beyond the superellipsoid's
+// largest radius) are refused (its features' coordinates, sums of a few
 // of them, must stay finite; docs/hardening.md → "Bad input").
 
 template <typename S>
@@ -64,6 +65,19 @@ void checkLength(const char* where, const char* name, S v) {
   if (!(v >= S(0) && v <= std::numeric_limits<S>::max() / 16)) {
     throwInvalidArgument(
         where, std::string("the other shape's ") + name + " must be finite, >= 0 and <= max/16", v);
+  }
+}
+
+/// An ellipsoid's radii: held to the superellipsoid's radius range at the top (zero radii are
+/// answered), since the smooth pair that answers both works with their squares and ratios
+/// (its support map, its rolling radius a²/b: docs/hardening.md, finding 22).
+template <typename S>
+void checkRadius(const char* where, const char* name, S v) {
+  if (!(v >= S(0) && v <= NumericRange<S>::kMaxRadius)) {
+    throwInvalidArgument(where,
+                         std::string("the other shape's ") + name + " must be finite, >= 0 and <= " +
+                             formatValue(NumericRange<S>::kMaxRadius),
+                         v);
   }
 }
 
@@ -85,7 +99,7 @@ void checkSphere(const char* where, const fcl::Sphere<S>& x) {
 }
 template <typename S>
 void checkEllipsoid(const char* where, const fcl::Ellipsoid<S>& x) {
-  for (int i = 0; i < 3; ++i) checkLength(where, "radii", x.radii[i]);
+  for (int i = 0; i < 3; ++i) checkRadius(where, "radii", x.radii[i]);
 }
 template <typename S>
 void checkBox(const char* where, const fcl::Box<S>& x) {

@@ -47,7 +47,11 @@ CcdObject<S> ccdObject(const fcl::TriangleP<S>& t, const fcl::Transform3<S>& X) 
 /// "Findings", 15) the portal never reaches the tolerance. Past `limit` calls (four times the
 /// iteration limit of MPR's last phase; its first two phases take a few calls each) the call
 /// leaves libccd with longjmp (boundedCollide), and ccdHit answers as if MPR had found no
-/// overlap. What the jump skips: libccd's MPR, which keeps its simplices on the stack and
+/// overlap. It leaves the same way when MPR asks for the support of a direction that is not
+/// finite (its portal's normals, cross products of cross products of the shapes' coordinates,
+/// overflow on a triangle of 1e50 × size around the shape in double, 1e19 in float: finding 23):
+/// the support functions would refuse it with an exception, which must not cross libccd's C
+/// frames. What the jump skips: libccd's MPR, which keeps its simplices on the stack and
 /// allocates nothing, and FCL's GJKCollide, whose locals are plain C structures; no destructor.
 struct BoundedObject {
   void* object;
@@ -60,7 +64,11 @@ struct BoundedObject {
 
 void boundedSupport(const void* o, const ccd_vec3_t* direction, ccd_vec3_t* out) {
   const auto* b = static_cast<const BoundedObject*>(o);
-  if (++*b->calls > b->limit) std::longjmp(*b->bail, 1);
+  if (++*b->calls > b->limit || !(std::isfinite(direction->v[0]) &&
+                                   std::isfinite(direction->v[1]) &&
+                                   std::isfinite(direction->v[2]))) {
+    std::longjmp(*b->bail, 1);
+  }
   b->support(b->object, direction, out);
 }
 void boundedCentre(const void* o, ccd_vec3_t* out) {

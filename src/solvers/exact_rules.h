@@ -148,6 +148,14 @@ constexpr double kCoverCapLimit = 0.75;
 /// near a crease or a tie of competing minima, and each further try costs about a Newton start.
 constexpr int kCoverAttempts = 2;
 
+/// Outside, where the contact direction's duality gap leaves an answer uncertified, the dual
+/// problem's lower bound is raised by at most this many steps of projected gradient ascent
+/// (ExactSolver::dualLowerBound), each halved at most kDualAscentHalvings − 1 times until it
+/// raises the bound. A step that settles a component too small for the format (finding 21)
+/// takes one or two; the cap bounds the cost where none helps.
+constexpr int kDualAscentSteps = 8;
+constexpr int kDualAscentHalvings = 40;
+
 /// Inside, when the answer is farther than this fraction of a cross-section's smaller radius,
 /// the solver also starts along that cross-section's diagonal.
 constexpr double kDiagonalStartDepth = 0.25;

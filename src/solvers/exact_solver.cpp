@@ -349,8 +349,10 @@ class ExactSolver {
   /// Outside, the best point N with the contact direction n = (Q − N)/‖Q − N‖ as its normal, if
   /// n is in N's normal cone to the tolerance: the duality gap h(n) − n·N (h the support
   /// function) is ≥ 0, and ‖Q − N‖ exceeds the distance by at most the gap, since every point
-  /// of the shape is at least n·Q − h(n) away. The candidate's error is the larger of the gap
-  /// and Eq. 7 with n (rounding: n is parallel to Q − N); kept if it beats best. A component of
+  /// of the shape is at least n·Q − h(n) away; where that gap exceeds the tolerance, ‖Q − N‖
+  /// less the lower bound of a better direction (dualLowerBound). The candidate's error is the
+  /// larger of the gap and Eq. 7 with n (rounding: n is parallel to Q − N); kept if it beats
+  /// best. A component of
   /// n can be negative (N a rounding beyond Q on a coordinate plane's side): the shape's mirror
   /// symmetry gives h(n) = h(|n|), and the support function is evaluated in the first octant.
   void tryContactDirection(Candidate<S>* best) const {
@@ -358,10 +360,47 @@ class ExactSolver {
     if (!n.allFinite()) return;
     Candidate<S> c = *best;
     c.normal = n;
-    const S gap = dual_.value(n.cwiseAbs()) - n.dot(c.point);
+    S gap = dual_.value(n.cwiseAbs()) - n.dot(c.point);
+    if (gap > q_.tolerance) {  // the gap of a better direction (dualLowerBound)
+      const S upper = (y_ - c.point).norm();
+      gap = upper - dualLowerBound(n.cwiseAbs(), upper);
+    }
     c.error = std::isfinite(gap) ? std::max(std::abs(gap), errorAt(c.point, n))
                                  : std::numeric_limits<S>::infinity();
     if (isBetter(c, *best)) *best = c;
+  }
+
+  /// A lower bound on the distance of an outside Q from the dual problem: the distance is the
+  /// largest φ(n) = n·Q − h(n) over the unit ball, and every n gives a lower bound (each point of
+  /// the shape is at least n·Q − h(n) from Q along n). φ is concave; from the first-octant unit
+  /// vector n, projected gradient ascent (the gradient Q − ∇h(n), ∇h(n) the support point; the
+  /// projection sets negative components to 0, since Q is in the first octant, and scales into
+  /// the ball), each step halved until it raises φ, until the bound is within the tolerance of
+  /// `upper` (the candidate's distance). Where the nearest point's normal has a component too
+  /// small for the format (beside the tip of a pinched cross-section on a nearly flat wall:
+  /// docs/hardening.md, finding 21), the contact direction's φ falls short of the distance by
+  /// more than the tolerance, and the step that sets that component to 0 closes the gap.
+  S dualLowerBound(Vector3<S> n, S upper) const {
+    S bound = y_.dot(n) - dual_.value(n);
+    for (int step = 0; step < rules::kDualAscentSteps && upper - bound > q_.tolerance; ++step) {
+      const Vector3<S> ascent = y_ - dual_.evaluate(n, false).gradient;
+      S t = S(1) / upper;
+      bool raised = false;
+      for (int k = 0; k < rules::kDualAscentHalvings && !raised; ++k, t *= S(0.5)) {
+        Vector3<S> m = (n + t * ascent).cwiseMax(S(0));
+        const S norm = m.norm();
+        if (!(norm > S(0))) continue;
+        if (norm > S(1)) m /= norm;
+        const S phi = y_.dot(m) - dual_.value(m);
+        if (phi > bound) {
+          bound = phi;
+          n = m;
+          raised = true;
+        }
+      }
+      if (!raised) break;
+    }
+    return bound;
   }
 
   /// Runs Newton from a start (the ray's surface point) and keeps the result if it beats best.

@@ -15,6 +15,7 @@
 #include <functional>
 #include <limits>
 #include <string>
+#include <type_traits>
 
 #include "fcl_superellipsoid/batch_distance.h"
 #include "fcl_superellipsoid/fcl_integration.h"
@@ -287,7 +288,7 @@ TYPED_TEST(BadInputTest, FclFrontEndAndTables) {
 }
 
 // Another shape with a parameter that is not finite, a negative length, or a coordinate beyond
-// max/16: refused by distance and collide, front end and FCL's call alike, naming the value.
+// max/16 (an ellipsoid's radii: beyond NumericRange<S>::kMaxRadius): refused by distance and collide, front end and FCL's call alike, naming the value.
 TYPED_TEST(BadInputTest, ShapePairPartners) {
   using S = TypeParam;
   const auto shape = std::make_shared<Superellipsoid<S>>(1, 1, 1, 1, 1);
@@ -320,6 +321,12 @@ TYPED_TEST(BadInputTest, ShapePairPartners) {
   refuse(fcl::Cone<S>(S(1), std::numeric_limits<S>::infinity()), "the other shape's lz", "inf");
   refuse(fcl::Sphere<S>(nan), "the other shape's radius", "nan");
   refuse(fcl::Ellipsoid<S>(S(1), S(-1), S(1)), "the other shape's radii", "-1");
+  // An ellipsoid's radii: at most the superellipsoid's largest radius (the smooth pair).
+  const bool is_float = std::is_same_v<S, float>;
+  refuse(fcl::Ellipsoid<S>(S(1), S(1), S(2) * NumericRange<S>::kMaxRadius),
+         std::string("the other shape's radii must be finite, >= 0 and <= ") +
+             (is_float ? "1e+06" : "1e+50"),
+         is_float ? "2000000" : "2.0000000000000002e+50");
   refuse(fcl::TriangleP<S>(Vector3<S>(0, 0, 0), Vector3<S>(nan, 0, 0), Vector3<S>(0, 1, 0)),
          "the other shape's vertex b must be finite", "nan");
   refuse(fcl::Halfspace<S>(Vector3<S>(0, 0, 1), huge), "the other shape's |d|", "e+");

@@ -718,6 +718,66 @@ TEST(ShapePairs, HugeTetrahedronAroundTheShapeNeverAborts) {
   }
 }
 
+// The ends of what the other shape may be (docs/hardening.md, findings 22 and 23): an ellipsoid
+// with radii at the superellipsoid's largest (the smooth pair forms their squares), and a
+// triangle `triangle_size` × the shape's size around it (libccd's MPR overflowed there and asked
+// for the support of a NaN direction, which the support function refused with an exception
+// thrown through libccd). Against the slimmest needle the range allows, in random poses:
+// every answer finite, the front end and FCL's table agreeing in both orders; apart from the
+// triangle along its normal, at the constructed distance.
+template <typename S>
+void checkPartnersAtTheEndOfTheRange(S triangle_size) {
+  const S R = NumericRange<S>::kMaxRadius, eps = std::numeric_limits<S>::epsilon();
+  const S thin = S(1) / NumericRange<S>::kMaxAspectRatio;
+  const auto needle = std::make_shared<Superellipsoid<S>>(thin, thin, S(1), S(1.35), S(0.02));
+  std::mt19937 rng(22);
+  std::uniform_real_distribution<double> u(-1, 1);
+  auto rotation = [&] {
+    return Eigen::Quaternion<S>(S(u(rng)), S(u(rng)), S(u(rng)), S(u(rng)))
+        .normalized()
+        .toRotationMatrix();
+  };
+  const std::shared_ptr<fcl::CollisionGeometry<S>> ellipsoids[] = {
+      std::make_shared<fcl::Ellipsoid<S>>(S(2.34), S(0.095), R),
+      std::make_shared<fcl::Ellipsoid<S>>(R, R / 3, R)};
+  for (const auto& ellipsoid : ellipsoids) {
+    for (int trial = 0; trial < 20; ++trial) {
+      fcl::Transform3<S> X_WA = fcl::Transform3<S>::Identity(), X_WB = X_WA;
+      X_WA.linear() = rotation();
+      X_WB.linear() = rotation();
+      const S reach = trial % 2 ? S(2) * R : S(3);
+      X_WA.translation() = reach * Vector3<S>(S(u(rng)), S(u(rng)), S(u(rng)));
+      ask<S>(needle, X_WA, ellipsoid, X_WB, double(64 * eps * std::max(R, reach)), true);
+    }
+  }
+  const S L = triangle_size;
+  const auto triangle = std::make_shared<fcl::TriangleP<S>>(
+      Vector3<S>(-L, -L, 0), Vector3<S>(L, -L, 0), Vector3<S>(0, L, 0));
+  for (int trial = 0; trial < 200; ++trial) {
+    // Apart: the needle upright (turned about z only) at height h above the triangle's plane,
+    // where the distance is h − 1 (the needle's half length). Across: both turned at random,
+    // the needle within 3 of the triangle's centre.
+    fcl::Transform3<S> X_WA = fcl::Transform3<S>::Identity(), X_WB = X_WA;
+    const bool apart = trial % 2 == 0;
+    const S h = apart ? L / 4 : S(3 * u(rng));
+    if (apart) {
+      X_WA.linear() = Eigen::AngleAxis<S>(S(3 * u(rng)), Vector3<S>::UnitZ()).toRotationMatrix();
+    } else {
+      X_WA.linear() = rotation();
+      X_WB.linear() = rotation();
+    }
+    X_WA.translation() = Vector3<S>(S(3 * u(rng)), S(3 * u(rng)), h);
+    const double rounding = double(64 * eps * L);
+    const Answer a = ask<S>(needle, X_WA, triangle, X_WB, rounding, true);
+    if (apart) EXPECT_NEAR(a.distance, double(h - S(1)), rounding);
+  }
+}
+
+TEST(ShapePairs, PartnersAtTheEndOfTheirRange) {
+  checkPartnersAtTheEndOfTheRange<float>(1e19f);
+  checkPartnersAtTheEndOfTheRange<double>(1e50);
+}
+
 // Float: every kind of partner agrees with the double answer to float's precision.
 TEST(ShapePairs, FloatAgreesWithDouble) {
   std::mt19937 rng(6);

@@ -645,6 +645,39 @@ TYPED_TEST(PointDistanceTest, FarBesideARidgeTheContactDirectionCertifies) {
   }
 }
 
+// Just off the tip of a pinched cross-section on a nearly flat wall (docs/hardening.md,
+// finding 21): a diamond-like cross-section (ε1 near 2) with box-like sides (ε2 near 0),
+// queried beyond a tip 1e-9–1e-7 × size off its axis. The nearest point's normal has components
+// far below the smallest double (the normal tilts like |x|^(2/ε1 − 1) off the tip, and the wall
+// like |z|^(2/ε2 − 1)), so no representable N has a small Eq. 7 error, and the contact
+// direction's duality gap is the wall's tilt (5e-10 for the fuzzer's query). The dual lower
+// bound certifies the answer. Each query converges at the reference's distance.
+TYPED_TEST(PointDistanceTest, BesideAPinchedTipTheDualBoundCertifies) {
+  using S = TypeParam;
+  const std::array<double, 5> shapes[] = {{1, 0.5, 0.25, 1.98, 0.02},
+                                          {1, 0.5, 0.25, 1.95, 0.05},
+                                          {2, 3, 1, 1.9, 0.1},
+                                          {0.3, 0.3, 2, 1.98, 0.02}};
+  for (const auto& p : shapes) {
+    const Superellipsoid<S> shape = makeShape<S>({p[0], p[1], p[2]}, p[3], p[4]);
+    SCOPED_TRACE(test::describe(shape));
+    const test::ReferenceDistance reference({p[0], p[1], p[2]}, shape.eps1(), shape.eps2());
+    const double target = test::exactTarget<S>(double(shape.eps1()), double(shape.eps2()));
+    for (int axis : {0, 1}) {  // the tips of the xy cross-section
+      for (double beyond : {0.05, 0.3, 0.984, 3.0}) {
+        for (double offset : {1e-9, 1e-8, 1e-7}) {
+          for (double sign : {1.0, -1.0}) {
+            Vector3<S> x = Vector3<S>::Constant(S(offset * shape.size()));
+            x[2] *= S(sign * 1.3);
+            x[axis] = S(-(p[axis] + beyond * shape.size()));
+            expectConvergedAtTheReference(shape, x, reference, target * shape.size());
+          }
+        }
+      }
+    }
+  }
+}
+
 TYPED_TEST(PointDistanceTest, WorldFrameOverloadPosesTheAnswer) {
   using S = TypeParam;
   const Superellipsoid<S> shape{S(1), S(2), S(0.5), S(0.6), S(1.2)};
