@@ -1,5 +1,6 @@
 // Google Benchmark micro-benchmarks: one query per iteration, cycling through 1,024 points
-// near the surface, for each method and shape class; a new shape's first inside query; and the
+// near the surface, for each method and shape class; a new shape's first inside query, and new
+// shapes' first queries near the surface against the same on warm shapes; and the
 // batched Exact query over the same 1,024 points per iteration, on SIMD lanes and on the scalar
 // path, and over a contact band of the cloth shape (±0.05 of its surface, half inside). The full
 // comparison is fse_bench; this target is for profiling one method and for tracking regressions
@@ -7,8 +8,11 @@
 
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <functional>
 #include <map>
+#include <random>
+#include <vector>
 
 #include "fcl_superellipsoid/batch_distance.h"
 #include "fcl_superellipsoid/point_distance.h"
@@ -82,6 +86,66 @@ void runFirstInsideQuery(benchmark::State& state, const std::string& shape_class
   state.SetItemsProcessed(state.iterations());
 }
 
+/// New shapes queried near their surface (docs/benchmark.md → "Micro-benchmarks"): 256 shapes
+/// with exponents in [0.1, 1.9], aspect ratios up to 100:1 and sizes from 1e-3 to 1e3, each with a
+/// point within 5 % of its size of the surface along the normal, half inside. `fresh`: the shape
+/// is built anew for each query (what a fit that changes the shape every step pays); otherwise
+/// the same queries on shapes already queried everywhere (their caches built).
+struct NearSurfaceCase {
+  Vector3<double> radii;
+  double e1, e2;
+  Vector3<double> q;
+};
+
+const std::vector<NearSurfaceCase>& nearSurfaceCases() {
+  static const std::vector<NearSurfaceCase> cases = [] {
+    std::mt19937 rng(53);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::vector<NearSurfaceCase> out;
+    for (int k = 0; k < 256; ++k) {
+      NearSurfaceCase c;
+      c.e1 = 0.1 + 1.8 * u(rng);
+      c.e2 = 0.1 + 1.8 * u(rng);
+      c.radii = Vector3<double>(std::pow(100.0, u(rng)), std::pow(100.0, u(rng)),
+                                std::pow(100.0, u(rng)));
+      c.radii *= std::pow(10.0, -3 + 6 * u(rng)) / c.radii.maxCoeff();
+      const Superellipsoid<double> shape(c.radii, c.e1, c.e2);
+      const Vector3<double> p = shape.surfacePoint(M_PI * (u(rng) - 0.5), M_PI * (2 * u(rng) - 1));
+      const double offset = 0.05 * shape.size() * u(rng) * (k % 2 ? 1 : -1);
+      c.q = p + offset * shape.normal(p);
+      out.push_back(c);
+    }
+    return out;
+  }();
+  return cases;
+}
+
+void runNearSurface(benchmark::State& state, bool fresh) {
+  const std::vector<NearSurfaceCase>& cases = nearSurfaceCases();
+  std::vector<Superellipsoid<double>> warm;
+  for (const NearSurfaceCase& c : cases) {
+    warm.emplace_back(c.radii, c.e1, c.e2);
+    for (double depth : {0.99, 0.9, 0.5, 0.1}) {  // inside at every depth: every cache built
+      pointDistance(warm.back(), Vector3<double>(depth * c.radii.cwiseProduct(
+                                                              Vector3<double>(0.3, 0.5, 0.6))));
+    }
+    (void)warm.back().minRadiusOfCurvature();
+    pointDistance(warm.back(), c.q);
+  }
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const NearSurfaceCase& c = cases[i];
+    if (fresh) {
+      const Superellipsoid<double> shape(c.radii, c.e1, c.e2);
+      benchmark::DoNotOptimize(pointDistance(shape, c.q));
+    } else {
+      benchmark::DoNotOptimize(pointDistance(warm[i], c.q));
+    }
+    i = (i + 1) % cases.size();
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
 void registerAll() {
   const std::vector<
       std::pair<std::string, std::function<std::unique_ptr<Method>(const BenchShape&)>>>
@@ -111,6 +175,10 @@ void registerAll() {
     benchmark::RegisterBenchmark(
         (std::string("FirstInsideQuery/") + shape_class).c_str(),
         [shape_class](benchmark::State& state) { runFirstInsideQuery(state, shape_class); });
+  }
+  for (const bool fresh : {true, false}) {
+    benchmark::RegisterBenchmark(fresh ? "NearSurfaceNewShape" : "NearSurfaceWarmShape",
+                                 [fresh](benchmark::State& state) { runNearSurface(state, fresh); });
   }
   for (const bool vectorize : {true, false}) {
     for (const char* shape_class : {"round", "sharp", "pinched", "cloth"}) {

@@ -37,6 +37,11 @@ class ShapeCaches {
     return v;
   }
 
+  /// The smallest radius of curvature if computed already; NaN if not.
+  S knownMinRadiusOfCurvature() const {
+    return min_radius_of_curvature_.load(std::memory_order_relaxed);
+  }
+
   /// The direction cover (solvers/direction_cover.h), built by `build()` (a
   /// std::shared_ptr<const DirectionCover<S>>) on first use.
   template <typename Build>

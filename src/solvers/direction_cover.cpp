@@ -5,17 +5,11 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <thread>
 #include <utility>
 
 namespace fcl_superellipsoid {
 namespace detail {
-
-template <typename S>
-void DirectionCover<S>::Level::resize(std::size_t n) {
-  for (std::vector<S>* field : {&ax, &ay, &az, &sx, &sy, &sz, &h, &ss, &cos_t, &sin2_t, &chord}) {
-    field->resize(n);
-  }
-}
 
 namespace {
 
@@ -104,67 +98,164 @@ inline bool boundReaches(S along, S sy, S ss, S yy, S cos_t, S sin2_t, S need) {
   return (margin >= S(0)) & (margin * margin >= across_squared * sin2_t);  // no branch
 }
 
+/// The finest level's cell p as (face, i, j) of its face's kFinestSide × kFinestSide grid: the
+/// coarse cell (face·kCoarse + i)·kCoarse + j, then per level the child 2·di + dj, from the
+/// coarsest level's digits down.
+template <int kCoarse, int kLevels>
+void finestCell(std::size_t p, int* face, int* i, int* j) {
+  std::size_t rest = p;
+  *i = 0;
+  *j = 0;
+  for (int level = kLevels - 1, bit = 0; level > 0; --level, ++bit) {
+    const int child = int(rest % 4);
+    rest /= 4;
+    *i |= (child / 2) << bit;
+    *j |= (child % 2) << bit;
+  }
+  *face = int(rest / (kCoarse * kCoarse));
+  *i += int(rest / kCoarse % kCoarse) << (kLevels - 1);
+  *j += int(rest % kCoarse) << (kLevels - 1);
+}
+
+/// The inverse: the finest cell (face, i, j) as its index p.
+template <int kCoarse, int kLevels>
+std::size_t finestIndex(int face, int i, int j) {
+  std::size_t p = (std::size_t(face) * kCoarse + std::size_t(i >> (kLevels - 1))) * kCoarse +
+                  std::size_t(j >> (kLevels - 1));
+  for (int bit = kLevels - 2; bit >= 0; --bit) {
+    p = 4 * p + std::size_t(2 * ((i >> bit) & 1) + ((j >> bit) & 1));
+  }
+  return p;
+}
+
+/// The cells' geometry on every level (the same for every shape), built once per process.
+template <typename S, int kCoarse, int kLevels>
+const std::array<typename DirectionCover<S>::LevelGeometry, kLevels>& coverGeometry() {
+  using LevelGeometry = typename DirectionCover<S>::LevelGeometry;
+  static const std::array<LevelGeometry, kLevels> levels = [] {
+    struct Square {
+      int face, i, j;  // cell (i, j) of the face's k × k grid
+    };
+    std::vector<Square> squares;
+    for (int face = 0; face < 3; ++face) {
+      for (int i = 0; i < kCoarse; ++i) {
+        for (int j = 0; j < kCoarse; ++j) squares.push_back({face, i, j});
+      }
+    }
+    std::array<LevelGeometry, kLevels> out;
+    for (int level = 0; level < kLevels; ++level) {
+      if (level > 0) {  // children in the order 4p + 2·di + dj
+        std::vector<Square> children;
+        for (const Square& q : squares) {
+          for (int di = 0; di < 2; ++di) {
+            for (int dj = 0; dj < 2; ++dj) children.push_back({q.face, 2 * q.i + di, 2 * q.j + dj});
+          }
+        }
+        squares.swap(children);
+      }
+      const int k = kCoarse << level;
+      LevelGeometry& cells = out[level];
+      for (const Square& q : squares) {
+        const Cell<S> c = cellGeometry<S>(q.face, q.i, q.j, k);
+        cells.ax.push_back(c.a[0]);
+        cells.ay.push_back(c.a[1]);
+        cells.az.push_back(c.a[2]);
+        cells.cos_t.push_back(c.cos_t);
+        cells.sin2_t.push_back(c.sin2_t);
+        cells.chord.push_back(c.chord);
+        cells.face.push_back(static_cast<std::uint8_t>(q.face));
+      }
+    }
+    return out;
+  }();
+  return levels;
+}
+
 }  // namespace
 
 template <typename S>
 DirectionCover<S>::DirectionCover(const Superellipsoid<S>& shape)
-    : support_(NestedNorm<S>::support(shape)), size_(shape.size()) {
-  struct Square {
-    int face, i, j;  // cell (i, j) of the face's k × k grid
-  };
-  std::vector<Square> squares;
-  for (int face = 0; face < 3; ++face) {
-    for (int i = 0; i < kCoarse; ++i) {
-      for (int j = 0; j < kCoarse; ++j) squares.push_back({face, i, j});
+    : geometry_(coverGeometry<S, kCoarse, kLevels>()),
+      support_(NestedNorm<S>::support(shape)),
+      size_(shape.size()),
+      ready_(new std::atomic<std::uint8_t>[kGroups]) {
+  for (int level = 0; level < kLevels; ++level) {
+    const std::size_t n = geometry_[level].ax.size();
+    for (std::vector<S>* field : {&levels_[level].sx, &levels_[level].sy, &levels_[level].sz,
+                                  &levels_[level].h, &levels_[level].ss}) {
+      field->resize(n);
     }
   }
-  for (int level = 0; level < kLevels; ++level) {
-    if (level > 0) {  // children in the order 4p + 2·di + dj
-      std::vector<Square> children;
-      for (const Square& q : squares) {
-        for (int di = 0; di < 2; ++di) {
-          for (int dj = 0; dj < 2; ++dj) children.push_back({q.face, 2 * q.i + di, 2 * q.j + dj});
-        }
-      }
-      squares.swap(children);
-    }
-    const int k = kCoarse << level;
-    Level& cells = levels_[level];
-    cells.resize(squares.size());
-    for (std::size_t p = 0; p < squares.size(); ++p) {
-      const Square& q = squares[p];
-      const Cell<S> c = cellGeometry<S>(q.face, q.i, q.j, k);
-      const Vector3<S> support = supportInside(support_, c.a, q.face);
-      cells.ax[p] = c.a[0];
-      cells.ay[p] = c.a[1];
-      cells.az[p] = c.a[2];
+  split_support_.resize(3 * 4 * kFinestCells);
+  for (std::size_t g = 0; g < kGroups; ++g) ready_[g].store(0, std::memory_order_relaxed);
+}
+
+template <typename S>
+template <typename Fill>
+void DirectionCover<S>::once(std::size_t group, const Fill& fill) const {
+  std::atomic<std::uint8_t>& flag = ready_[group];
+  if (flag.load(std::memory_order_acquire) == 2) return;
+  std::uint8_t empty = 0;
+  if (flag.compare_exchange_strong(empty, 1, std::memory_order_acquire)) {
+    fill();
+    flag.store(2, std::memory_order_release);
+    return;
+  }
+  // Another thread is evaluating it: four support points.
+  while (flag.load(std::memory_order_acquire) != 2) std::this_thread::yield();
+}
+
+template <typename S>
+void DirectionCover<S>::ensureLevel(int level, std::size_t parent) const {
+  std::size_t group = 0, first = 0, count = geometry_[0].ax.size();
+  if (level > 0) {
+    group = parent;
+    for (int l = 0; l < level; ++l) group += kLevelGroups[l];
+    first = 4 * parent;
+    count = 4;
+  }
+  once(group, [&] {
+    const LevelGeometry& g = geometry_[level];
+    LevelSupport& cells = levels_[level];
+    for (std::size_t p = first; p < first + count; ++p) {
+      const Vector3<S> a(g.ax[p], g.ay[p], g.az[p]);
+      const Vector3<S> support = supportInside(support_, a, g.face[p]);
       cells.sx[p] = support[0];
       cells.sy[p] = support[1];
       cells.sz[p] = support[2];
-      cells.h[p] = c.a.dot(support);
+      cells.h[p] = a.dot(support);
       cells.ss[p] = support.squaredNorm();
-      cells.cos_t[p] = c.cos_t;
-      cells.sin2_t[p] = c.sin2_t;
-      cells.chord[p] = c.chord;
     }
-  }
-  // The first split grid's support points, relative to the size and pulled inward by 2^-20:
-  // G is 1-homogeneous and grows with each coordinate in the octant, so the roundings on the
-  // way (to float and back, a few ulps of float at most) leave the point inside the shape.
-  const auto& grid = splitGrids<S, kFinestSide, kRefineLevels>()[0];
-  split_support_.resize(3 * 3 * grid.size());
-  const S inward = (S(1) - S(1.0 / (1 << 20))) / size_;
-  for (int face = 0; face < 3; ++face) {
-    for (std::size_t c = 0; c < grid.size(); ++c) {
-      const Vector3<S> s = inward * supportInside(support_, onFace(grid[c].a, face), face);
-      for (int i = 0; i < 3; ++i) split_support_[3 * (face * grid.size() + c) + i] = float(s[i]);
+  });
+}
+
+template <typename S>
+void DirectionCover<S>::ensureSplit(std::size_t p) const {
+  once(kLevelGroups[0] + kLevelGroups[1] + kLevelGroups[2] + p, [&] {
+    // The first split grid's support points, relative to the size and pulled inward by 2^-20:
+    // G is 1-homogeneous and grows with each coordinate in the octant, so the roundings on the
+    // way (to float and back, a few ulps of float at most) leave the point inside the shape.
+    const auto& grid = splitGrids<S, kFinestSide, kRefineLevels>()[0];
+    constexpr int kSide = 2 * kFinestSide;
+    const S inward = (S(1) - S(1.0 / (1 << 20))) / size_;
+    int face = 0, i = 0, j = 0;
+    finestCell<kCoarse, kLevels>(p, &face, &i, &j);
+    for (int di = 0; di < 2; ++di) {
+      for (int dj = 0; dj < 2; ++dj) {
+        const std::size_t c = std::size_t(2 * i + di) * kSide + std::size_t(2 * j + dj);
+        const Vector3<S> s = inward * supportInside(support_, onFace(grid[c].a, face), face);
+        for (int k = 0; k < 3; ++k) {
+          split_support_[3 * (std::size_t(face) * grid.size() + c) + k] = float(s[k]);
+        }
+      }
     }
-  }
+  });
 }
 
 template <typename S>
 Vector3<S> DirectionCover<S>::splitSupport(int face, int i, int j) const {
   constexpr std::size_t kSide = 2 * kFinestSide;
+  ensureSplit(finestIndex<kCoarse, kLevels>(face, i / 2, j / 2));
   const float* stored = &split_support_[3 * ((std::size_t(face) * kSide + i) * kSide + j)];
   return Vector3<S>(S(stored[0]), S(stored[1]), S(stored[2])) * size_;
 }
@@ -172,31 +263,34 @@ Vector3<S> DirectionCover<S>::splitSupport(int face, int i, int j) const {
 template <typename S>
 Vector3<S> DirectionCover<S>::startNear(const Vector3<S>& y) const {
   // F(a) = h − a·y, smallest among the coarse cells, then among each chosen cell's children.
-  auto value = [&y](const Level& l, std::size_t p) {
-    return l.h[p] - (l.ax[p] * y[0] + l.ay[p] * y[1] + l.az[p] * y[2]);
+  auto value = [&](int level, std::size_t p) {
+    const LevelGeometry& g = geometry_[level];
+    return levels_[level].h[p] - (g.ax[p] * y[0] + g.ay[p] * y[1] + g.az[p] * y[2]);
   };
+  ensureLevel(0, 0);
   std::size_t best = 0;
-  S lowest = value(levels_[0], 0);
-  for (std::size_t p = 1; p < levels_[0].h.size(); ++p) {
-    const S v = value(levels_[0], p);
+  S lowest = value(0, 0);
+  for (std::size_t p = 1; p < geometry_[0].ax.size(); ++p) {
+    const S v = value(0, p);
     if (v < lowest) {
       lowest = v;
       best = p;
     }
   }
   for (int level = 1; level < kLevels; ++level) {
+    ensureLevel(level, best);
     const std::size_t first = 4 * best;
     best = first;
-    lowest = value(levels_[level], first);
+    lowest = value(level, first);
     for (std::size_t p = first + 1; p < first + 4; ++p) {
-      const S v = value(levels_[level], p);
+      const S v = value(level, p);
       if (v < lowest) {
         lowest = v;
         best = p;
       }
     }
   }
-  const Level& finest = levels_[kLevels - 1];
+  const LevelSupport& finest = levels_[kLevels - 1];
   return Vector3<S>(finest.sx[best], finest.sy[best], finest.sz[best]);
 }
 
@@ -204,10 +298,12 @@ template <typename S>
 std::size_t DirectionCover<S>::failingFinest(const Vector3<S>& y, S need,
                                              std::uint16_t* failing) const {
   const S yy = y.squaredNorm();
-  auto passes = [&](const Level& l, std::size_t p) {
-    const S ay = l.ax[p] * y[0] + l.ay[p] * y[1] + l.az[p] * y[2];
+  auto passes = [&](int level, std::size_t p) {
+    const LevelGeometry& g = geometry_[level];
+    const LevelSupport& l = levels_[level];
+    const S ay = g.ax[p] * y[0] + g.ay[p] * y[1] + g.az[p] * y[2];
     const S sy = l.sx[p] * y[0] + l.sy[p] * y[1] + l.sz[p] * y[2];
-    return boundReaches(l.h[p] - ay, sy, l.ss[p], yy, l.cos_t[p], l.sin2_t[p], need);
+    return boundReaches(l.h[p] - ay, sy, l.ss[p], yy, g.cos_t[p], g.sin2_t[p], need);
   };
   // Level by level: the failing cells of one level, then their children on the next. The lists
   // live on the stack (at most the finest level's 768 cells): every inside query that reaches
@@ -217,18 +313,19 @@ std::size_t DirectionCover<S>::failingFinest(const Vector3<S>& y, S need,
   std::size_t failing_count = 0;
   // Each cell's index is written and the count advanced only if it fails: no branch on the
   // outcome, which the cells' order does not make predictable.
-  for (std::size_t p = 0; p < levels_[0].h.size(); ++p) {
+  ensureLevel(0, 0);
+  for (std::size_t p = 0; p < geometry_[0].ax.size(); ++p) {
     failing[failing_count] = static_cast<std::uint16_t>(p);
-    failing_count += !passes(levels_[0], p);
+    failing_count += !passes(0, p);
   }
   for (int level = 1; level < kLevels; ++level) {
     std::size_t next_count = 0;
-    const Level& cells = levels_[level];
     for (std::size_t k = 0; k < failing_count; ++k) {
+      ensureLevel(level, failing[k]);
       const std::size_t first = 4 * std::size_t(failing[k]);
       for (std::size_t p = first; p < first + 4; ++p) {
         next[next_count] = static_cast<std::uint16_t>(p);
-        next_count += !passes(cells, p);
+        next_count += !passes(level, p);
       }
     }
     std::copy(next, next + next_count, failing);
@@ -246,7 +343,7 @@ typename DirectionCover<S>::Cap DirectionCover<S>::cap(const Vector3<S>& y,
   out.count = 0;
   if (!(y.allFinite() && n_star.allFinite() && std::isfinite(need))) return out;
   out.count = failingFinest(y, need, out.failing.data());
-  const Level& finest = levels_[kLevels - 1];
+  const LevelGeometry& finest = geometry_[kLevels - 1];
   S radius = S(0);
   for (std::size_t k = 0; k < out.count; ++k) {
     const std::size_t p = out.failing[k];
@@ -312,7 +409,8 @@ bool DirectionCover<S>::capWithin(const Cap& cap, const Vector3<S>& y, const Vec
     }
     return true;
   };
-  const Level& finest = levels_[kLevels - 1];
+  const LevelGeometry& finest = geometry_[kLevels - 1];
+  const LevelSupport& finest_support = levels_[kLevels - 1];  // (cap's cells: evaluated)
   // The cells reaching beyond `target`, nearest first: they are the likeliest to fail.
   struct Beyond {  // trivial, so the array is not zeroed on every call
     S reach;
@@ -331,21 +429,10 @@ bool DirectionCover<S>::capWithin(const Cap& cap, const Vector3<S>& y, const Vec
   for (std::size_t k = 0; k < beyond_count; ++k) {
     const std::size_t p = beyond[k].cell;
     const Vector3<S> a(finest.ax[p], finest.ay[p], finest.az[p]);
-    const Vector3<S> s(finest.sx[p], finest.sy[p], finest.sz[p]);
+    const Vector3<S> s(finest_support.sx[p], finest_support.sy[p], finest_support.sz[p]);
     if (refutes(a, s)) return false;
-    // Its (face, i, j): the coarse cell (face·kCoarse + i)·kCoarse + j, then per level the child
-    // 2·di + dj, from the coarsest level's digits down.
-    std::size_t rest = p;
-    int i = 0, j = 0;
-    for (int level = kLevels - 1, bit = 0; level > 0; --level, ++bit) {
-      const int child = int(rest % 4);
-      rest /= 4;
-      i |= (child / 2) << bit;
-      j |= (child % 2) << bit;
-    }
-    const int face = int(rest / (kCoarse * kCoarse));
-    i += int(rest / kCoarse % kCoarse) << (kLevels - 1);
-    j += int(rest % kCoarse) << (kLevels - 1);
+    int face = 0, i = 0, j = 0;
+    finestCell<kCoarse, kLevels>(p, &face, &i, &j);
     if (!within(within, face, i, j, kFinestSide, kRefineLevels, s)) return false;
   }
   return true;

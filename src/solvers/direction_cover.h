@@ -19,9 +19,14 @@
 //
 // Cells: the first octant's directions, mapped onto the three faces of the unit cube (the face
 // of the largest component), each face a k × k grid; k = 4, 8, 16 on the three stored levels
-// (32, 64, 128 split per query), a cell of one level the union of four of the next.
+// (32, 64, 128 split per query), a cell of one level the union of four of the next. The cells'
+// geometry does not depend on the shape (built once per process); their support points do, and
+// are evaluated on first use, four siblings at a time, so that a query reads only what it needs:
+// a start evaluates 56 of them, a certificate near the surface the few dozen cells near the
+// answer's normal, and a new shape costs its first queries little more than its later ones.
 
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -43,11 +48,11 @@ class DirectionCover {
   static constexpr int kFinestSide = kCoarse << (kLevels - 1);
   static constexpr std::size_t kFinestCells = 3 * std::size_t(kFinestSide) * kFinestSide;
 
-  /// Evaluates the shape's support point in every cell's centre direction (1,008 of them), each
-  /// pulled toward the centre by a few ulps so that it lies inside the shape despite rounding
-  /// (the bounds need points of the shape, not near it), and in the 3,072 directions of the
-  /// first split grid (splitSupport). Its cost is the first inside query's on a new shape
-  /// (docs/benchmark.md → "Micro-benchmarks").
+  /// The cover of `shape`, with no support point evaluated yet. A cell's (in its centre
+  /// direction, pulled toward the centre by a few ulps so that it lies inside the shape despite
+  /// rounding: the bounds need points of the shape, not near it) is evaluated with its three
+  /// siblings when a query first reads it; likewise the first split grid's (splitSupport).
+  /// Thread-safe: each group is evaluated once, by the first thread that reads it.
   explicit DirectionCover(const Superellipsoid<S>& shape);
 
   /// A first-octant surface point whose normal lies near the nearest point's normal for a point
@@ -91,33 +96,57 @@ class DirectionCover {
   /// answer usually lies there too.
   static constexpr int kSplitSupportPoints = 64;
 
- private:
-  /// One level's cells, field by field (the loops over them vectorise). Cell p of a level has
+ /// One level's cells, field by field (the loops over them vectorise). Cell p of a level has
   /// its four children at 4p … 4p + 3 on the next; the coarsest level's cell (face, i, j) is
-  /// at (face·kCoarse + i)·kCoarse + j.
-  struct Level {
+  /// at (face·kCoarse + i)·kCoarse + j. The geometry, the same for every shape.
+  struct LevelGeometry {
     std::vector<S> ax, ay, az;  // unit centre direction a
-    std::vector<S> sx, sy, sz;  // support point s in direction a, a few ulps inside the shape
-    std::vector<S> h;           // a·s, so F(a) = h − a·y
-    std::vector<S> ss;          // ‖s‖², so ‖s − y‖² = ss − 2·s·y + ‖y‖²
     std::vector<S> cos_t;       // cosine of the cell's half-angle θ about a (rounded down)
     std::vector<S> sin2_t;      // sin²θ (rounded up)
     std::vector<S> chord;       // ‖n − a‖ ≤ chord for every n of the cell (rounded up)
-    void resize(std::size_t n);
+    std::vector<std::uint8_t> face;  // the cube face the cell lies on
+  };
+
+ private:
+  /// The shape's support points of one level's cells, evaluated a group at a time (`ready`).
+  struct LevelSupport {
+    std::vector<S> sx, sy, sz;  // support point s in direction a, a few ulps inside the shape
+    std::vector<S> h;           // a·s, so F(a) = h − a·y
+    std::vector<S> ss;          // ‖s‖², so ‖s − y‖² = ss − 2·s·y + ‖y‖²
   };
 
   /// The finest level's failing cells for (y, need), written to `failing` (room for every
   /// finest cell); returns their number.
   std::size_t failingFinest(const Vector3<S>& y, S need, std::uint16_t* failing) const;
 
-  std::array<Level, kLevels> levels_;
-  NestedNorm<S> support_;  // the shape's support function, for the cells split on the spot
+  /// Groups whose support points are evaluated together, each with its flag in ready_: the
+  /// coarsest level (one group), the four children of each cell of the levels above the finest,
+  /// and the four first-split-grid cells inside each finest cell.
+  static constexpr std::size_t kLevelGroups[kLevels] = {1, 3 * kCoarse * kCoarse,
+                                                        3 * 4 * kCoarse * kCoarse};
+  static constexpr std::size_t kGroups =
+      kLevelGroups[0] + kLevelGroups[1] + kLevelGroups[2] + kFinestCells;
+  static_assert(kLevels == 3, "kLevelGroups lists three levels");
+  /// Makes sure the support points of level `level`'s children of cell `parent` (level 0: every
+  /// cell, parent ignored) are evaluated.
+  void ensureLevel(int level, std::size_t parent) const;
+  /// The same for the first split grid's four cells inside finest cell p.
+  void ensureSplit(std::size_t p) const;
+  /// Runs `fill` once for group `group` (the first caller; the others wait for it).
+  template <typename Fill>
+  void once(std::size_t group, const Fill& fill) const;
+
+  const std::array<LevelGeometry, kLevels>& geometry_;  // coverGeometry(), per process
+  NestedNorm<S> support_;  // the shape's support function
   S size_;                 // the shape's size (its largest radius)
+  mutable std::array<LevelSupport, kLevels> levels_;
   /// The support points of the first grid below the finest stored level (2·kFinestSide cells
   /// per face side, 3,072 in all), which capWithin would otherwise evaluate most often: x, y, z
   /// per cell, face by face, row-major, in units of size_ and pulled inward (the constructor),
   /// in float (37 KB).
-  std::vector<float> split_support_;
+  mutable std::vector<float> split_support_;
+  /// Per group: 0 not evaluated, 1 being evaluated, 2 evaluated.
+  std::unique_ptr<std::atomic<std::uint8_t>[]> ready_;
 };
 
 extern template class DirectionCover<float>;
