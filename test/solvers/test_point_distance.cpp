@@ -646,8 +646,9 @@ TYPED_TEST(PointDistanceTest, FarBesideARidgeTheContactDirectionCertifies) {
 }
 
 // Just off the tip of a pinched cross-section on a nearly flat wall (docs/hardening.md,
-// finding 21): a diamond-like cross-section (ε1 near 2) with box-like sides (ε2 near 0),
-// queried beyond a tip 1e-9–1e-7 × size off its axis. The nearest point's normal has components
+// finding 21): a diamond-like cross-section (ε1 near 2) with box-like sides (ε2 near 0), or a
+// box-like cross-section with a pinched profile, queried beyond a tip 1e-9–1e-7 × size off its
+// axis. The nearest point's normal has components
 // far below the smallest double (the normal tilts like |x|^(2/ε1 − 1) off the tip, and the wall
 // like |z|^(2/ε2 − 1)), so no representable N has a small Eq. 7 error, and the contact
 // direction's duality gap is the wall's tilt (5e-10 for the fuzzer's query). The dual lower
@@ -657,7 +658,8 @@ TYPED_TEST(PointDistanceTest, BesideAPinchedTipTheDualBoundCertifies) {
   const std::array<double, 5> shapes[] = {{1, 0.5, 0.25, 1.98, 0.02},
                                           {1, 0.5, 0.25, 1.95, 0.05},
                                           {2, 3, 1, 1.9, 0.1},
-                                          {0.3, 0.3, 2, 1.98, 0.02}};
+                                          {0.3, 0.3, 2, 1.98, 0.02},
+                                          {1, 0.5, 0.25, 0.1, 1.98}};
   for (const auto& p : shapes) {
     const Superellipsoid<S> shape = makeShape<S>({p[0], p[1], p[2]}, p[3], p[4]);
     SCOPED_TRACE(test::describe(shape));
