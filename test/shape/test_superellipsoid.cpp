@@ -459,6 +459,64 @@ TYPED_TEST(SuperellipsoidTest, DirectionCoverIsBuiltOnceForAllThreads) {
   for (const Vector3<S>& s : copied_start) EXPECT_EQ(s, start);
 }
 
+// The cover's support points are evaluated when first read, four siblings at a time
+// (solvers/direction_cover.h): threads reading the same cells of a new shape at once (starts and
+// caps at points all over the shape) get what one thread gets on another new shape, bitwise,
+// and each group is evaluated by one of them (the TSan build runs this).
+TYPED_TEST(SuperellipsoidTest, DirectionCoverIsBuiltOnceCellByCellForAllThreads) {
+  using S = TypeParam;
+  const Vector3<S> radii(S(3.5), S(3), S(2));
+  std::vector<Vector3<S>> ys;
+  for (int k = 0; k < 24; ++k) {
+    const S t = S(0.1) + S(0.8) * S(k % 6) / S(5);
+    ys.push_back(t * Vector3<S>(S(1 + k % 3), S(1 + k % 5), S(1 + k % 4)).normalized()
+                       .cwiseProduct(radii) * S(0.5));
+  }
+  struct Answer {
+    Vector3<S> start;
+    S radius;
+    std::size_t count;
+  };
+  auto answers = [&](const Superellipsoid<S>& shape, std::size_t first, std::size_t step) {
+    std::vector<Answer> out(ys.size());
+    const detail::DirectionCover<S>& cover = detail::directionCover(shape);
+    for (std::size_t k = first; k < ys.size(); k += step) {
+      const Vector3<S> start = cover.startNear(ys[k]);
+      const Vector3<S> n = (start - ys[k]).normalized();
+      const auto cap = cover.cap(ys[k], n, (start - ys[k]).norm(), S(10));
+      out[k] = {start, cap.radius, cap.count};
+    }
+    return out;
+  };
+  const Superellipsoid<S> alone{radii, S(0.4), S(0.3)};
+  const std::vector<Answer> expected = answers(alone, 0, 1);
+  std::size_t read_deeper = 0;  // caps that read cells below the coarsest level
+  for (const Answer& a : expected) read_deeper += a.count > 0 && std::isfinite(a.radius);
+  EXPECT_GT(read_deeper, ys.size() / 2);
+  const Superellipsoid<S> shared{radii, S(0.4), S(0.3)};
+  constexpr int kThreads = 6;
+  std::vector<std::vector<Answer>> got(kThreads);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < kThreads; ++t) {
+    // Every thread reads every point, starting at a different one.
+    threads.emplace_back([&, t] {
+      got[t].resize(ys.size());
+      for (std::size_t r = 0; r < ys.size(); ++r) {
+        const std::size_t k = (r + std::size_t(t) * 4) % ys.size();
+        got[t][k] = answers(shared, k, ys.size())[k];
+      }
+    });
+  }
+  for (std::thread& t : threads) t.join();
+  for (int t = 0; t < kThreads; ++t) {
+    for (std::size_t k = 0; k < ys.size(); ++k) {
+      EXPECT_EQ(got[t][k].start, expected[k].start) << "thread " << t << ", point " << k;
+      EXPECT_EQ(got[t][k].radius, expected[k].radius) << "thread " << t << ", point " << k;
+      EXPECT_EQ(got[t][k].count, expected[k].count) << "thread " << t << ", point " << k;
+    }
+  }
+}
+
 // The rolling-ball property by construction, against the independent long-double gauge: the
 // ball of the rolling radius that touches the surface from inside lies inside the shape, over
 // the exponent grid (ε ≤ 1) and the radii set, at random surface points.
