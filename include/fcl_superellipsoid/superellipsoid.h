@@ -124,8 +124,10 @@ class FSE_EXPORT Superellipsoid : public fcl::ShapeBase<S> {
   /// A lower bound on the smallest principal radius of curvature of the surface (within 10 % of
   /// it): every ball of this radius that touches the surface from inside lies inside the shape
   /// (it "rolls freely"; docs/math.md → "The rolling-ball certificate"). 0 where an exponent is
-  /// > 1: the surface then has creases of unbounded curvature. Computed on the first call (the
-  /// Exact solver calls it for the first inside query), then kept; copies share it.
+  /// > 1 (the surface then has creases of unbounded curvature) or the largest radius exceeds
+  /// 1000 × the smallest (beyond what its search is validated for). Computed on the first call
+  /// (the Exact solver calls it where its cheaper certificates do not settle an inside query),
+  /// then kept; copies share it.
   S minRadiusOfCurvature() const;
 
   /// The options FCL queries against this shape use (fcl_integration.h: mesh vertices,
