@@ -592,11 +592,12 @@ long double parametricSmallestRadius(const std::array<double, 3>& a, long double
 }
 
 // The rolling radius is a lower bound on every principal radius of the surface: below the
-// smallest radius over a fine set of surface points (parametric angles in the octant: 64 uniform
-// ones, which crowd where box-like shapes bend most, and geometric ones towards both ends, down
-// to 1e-8 rad, where flat and elongated shapes have their rims and tips), and close to it (within
-// the safety factor and what such a set can miss) wherever the exponents are moderate.
-TEST(RollingRadius, BelowEveryRadiusOfCurvatureAndCloseToTheSmallest) {
+// smallest radius over a fine set of surface points (smallestParametricRadius), and close to it
+// (within the safety factor and what such a set can miss) wherever the exponents are moderate.
+/// The smallest principal radius over a fine set of surface points (parametric angles in the
+/// octant: 64 uniform ones, which crowd where box-like shapes bend most, and geometric ones
+/// towards both ends, down to 1e-8 rad, where flat and elongated shapes have their rims and tips).
+long double smallestParametricRadius(const std::array<double, 3>& a, double e1, double e2) {
   constexpr long double kHalfPi = 1.57079632679489661923132169163975144L;
   std::vector<long double> angles;
   for (int i = 0; i < 64; ++i) angles.push_back((i + 0.5L) * kHalfPi / 64);
@@ -604,18 +605,23 @@ TEST(RollingRadius, BelowEveryRadiusOfCurvatureAndCloseToTheSmallest) {
     angles.push_back(t);
     angles.push_back(kHalfPi - t);
   }
+  long double smallest = std::numeric_limits<long double>::infinity();
+  for (long double eta : angles) {
+    for (long double omega : angles) {
+      const long double r = parametricSmallestRadius(a, e1, e2, eta, omega);
+      if (std::isfinite(r)) smallest = std::min(smallest, r);
+    }
+  }
+  return smallest;
+}
+
+TEST(RollingRadius, BelowEveryRadiusOfCurvatureAndCloseToTheSmallest) {
   for (const auto& a : test::radiiSet()) {
     for (double e1 : {0.02, 0.1, 0.3, 0.65, 1.0}) {
       for (double e2 : {0.02, 0.1, 0.3, 0.65, 1.0}) {
         const Superellipsoid<double> shape{a[0], a[1], a[2], e1, e2};
         SCOPED_TRACE(test::describe(shape));
-        long double smallest = std::numeric_limits<long double>::infinity();
-        for (long double eta : angles) {
-          for (long double omega : angles) {
-            const long double r = parametricSmallestRadius(a, e1, e2, eta, omega);
-            if (std::isfinite(r)) smallest = std::min(smallest, r);
-          }
-        }
+        const long double smallest = smallestParametricRadius(a, e1, e2);
         const double bound = shape.minRadiusOfCurvature();
         EXPECT_LE(bound, double(smallest) * (1 + 1e-12));
         if (std::min(e1, e2) >= 0.3) EXPECT_GE(bound, 0.85 * double(smallest));
@@ -629,13 +635,6 @@ TEST(RollingRadius, BelowEveryRadiusOfCurvatureAndCloseToTheSmallest) {
 // on random shapes beyond it (these among them), so the rolling ball certified inside answers it
 // should not have.
 TEST(RollingRadius, BelowEveryRadiusOfCurvatureOnElongatedShapes) {
-  constexpr long double kHalfPi = 1.57079632679489661923132169163975144L;
-  std::vector<long double> angles;
-  for (int i = 0; i < 64; ++i) angles.push_back((i + 0.5L) * kHalfPi / 64);
-  for (long double t = 2e-2L; t >= 1e-8L; t /= 2) {
-    angles.push_back(t);
-    angles.push_back(kHalfPi - t);
-  }
   const std::array<double, 5> shapes[] = {{1.55378e-05, 0.0669112, 0.0383264, 0.270677, 0.890368},
                                           {0.0137929, 4.55755e-06, 0.00199165, 0.598152, 0.944018},
                                           {0.0428968, 2.39194e-06, 0.0885745, 0.401245, 0.6377},
@@ -645,13 +644,7 @@ TEST(RollingRadius, BelowEveryRadiusOfCurvatureOnElongatedShapes) {
     const std::array<double, 3> a = {p[0], p[1], p[2]};
     const Superellipsoid<double> shape{a[0], a[1], a[2], p[3], p[4]};
     SCOPED_TRACE(test::describe(shape));
-    long double smallest = std::numeric_limits<long double>::infinity();
-    for (long double eta : angles) {
-      for (long double omega : angles) {
-        const long double r = parametricSmallestRadius(a, p[3], p[4], eta, omega);
-        if (std::isfinite(r)) smallest = std::min(smallest, r);
-      }
-    }
+    const long double smallest = smallestParametricRadius(a, p[3], p[4]);
     EXPECT_LE(shape.minRadiusOfCurvature(), double(smallest) * (1 + 1e-12));
   }
 }
