@@ -56,9 +56,9 @@ struct PairKind {
 
 // --- The checks of the other geometry's parameters ----------------------------------------
 // Parameters that are not finite, a negative length, or a length or coordinate beyond a
-// sixteenth of the largest finite value (an ellipsoid's radii: beyond the superellipsoid's
-// largest radius) are refused (its features' coordinates, sums of a few
-// of them, must stay finite; docs/hardening.md → "Bad input").
+// sixteenth of the largest finite value are refused: its features' coordinates, sums of a few
+// of them, must stay finite (docs/hardening.md → "Bad input"). An ellipsoid's radii are held to
+// the superellipsoid's largest radius (checkRadius).
 
 template <typename S>
 void checkLength(const char* where, const char* name, S v) {

@@ -96,7 +96,7 @@ class DirectionCover {
   /// answer usually lies there too.
   static constexpr int kSplitSupportPoints = 64;
 
- /// One level's cells, field by field (the loops over them vectorise). Cell p of a level has
+  /// One level's cells, field by field (the loops over them vectorise). Cell p of a level has
   /// its four children at 4p … 4p + 3 on the next; the coarsest level's cell (face, i, j) is
   /// at (face·kCoarse + i)·kCoarse + j. The geometry, the same for every shape.
   struct LevelGeometry {
@@ -108,7 +108,7 @@ class DirectionCover {
   };
 
  private:
-  /// The shape's support points of one level's cells, evaluated a group at a time (`ready`).
+  /// The shape's support points of one level's cells, evaluated a group at a time (ready_).
   struct LevelSupport {
     std::vector<S> sx, sy, sz;  // support point s in direction a, a few ulps inside the shape
     std::vector<S> h;           // a·s, so F(a) = h − a·y
@@ -142,8 +142,8 @@ class DirectionCover {
   mutable std::array<LevelSupport, kLevels> levels_;
   /// The support points of the first grid below the finest stored level (2·kFinestSide cells
   /// per face side, 3,072 in all), which capWithin would otherwise evaluate most often: x, y, z
-  /// per cell, face by face, row-major, in units of size_ and pulled inward (the constructor),
-  /// in float (37 KB).
+  /// per cell, face by face, row-major, in units of size_ and pulled inward (ensureSplit), in
+  /// float (37 KB).
   mutable std::vector<float> split_support_;
   /// Per group: 0 not evaluated, 1 being evaluated, 2 evaluated.
   std::unique_ptr<std::atomic<std::uint8_t>[]> ready_;
