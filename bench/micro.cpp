@@ -126,8 +126,8 @@ void runNearSurface(benchmark::State& state, bool fresh) {
   for (const NearSurfaceCase& c : cases) {
     warm.emplace_back(c.radii, c.e1, c.e2);
     for (double depth : {0.99, 0.9, 0.5, 0.1}) {  // inside at every depth: every cache built
-      pointDistance(warm.back(), Vector3<double>(depth * c.radii.cwiseProduct(
-                                                              Vector3<double>(0.3, 0.5, 0.6))));
+      pointDistance(warm.back(),
+                    Vector3<double>(depth * c.radii.cwiseProduct(Vector3<double>(0.3, 0.5, 0.6))));
     }
     (void)warm.back().minRadiusOfCurvature();
     pointDistance(warm.back(), c.q);
@@ -177,8 +177,9 @@ void registerAll() {
         [shape_class](benchmark::State& state) { runFirstInsideQuery(state, shape_class); });
   }
   for (const bool fresh : {true, false}) {
-    benchmark::RegisterBenchmark(fresh ? "NearSurfaceNewShape" : "NearSurfaceWarmShape",
-                                 [fresh](benchmark::State& state) { runNearSurface(state, fresh); });
+    benchmark::RegisterBenchmark(
+        fresh ? "NearSurfaceNewShape" : "NearSurfaceWarmShape",
+        [fresh](benchmark::State& state) { runNearSurface(state, fresh); });
   }
   for (const bool vectorize : {true, false}) {
     for (const char* shape_class : {"round", "sharp", "pinched", "cloth"}) {

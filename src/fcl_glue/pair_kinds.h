@@ -74,10 +74,11 @@ void checkLength(const char* where, const char* name, S v) {
 template <typename S>
 void checkRadius(const char* where, const char* name, S v) {
   if (!(v >= S(0) && v <= NumericRange<S>::kMaxRadius)) {
-    throwInvalidArgument(where,
-                         std::string("the other shape's ") + name + " must be finite, >= 0 and <= " +
-                             formatValue(NumericRange<S>::kMaxRadius),
-                         v);
+    throwInvalidArgument(
+        where,
+        std::string("the other shape's ") + name +
+            " must be finite, >= 0 and <= " + formatValue(NumericRange<S>::kMaxRadius),
+        v);
   }
 }
 

@@ -64,9 +64,9 @@ struct BoundedObject {
 
 void boundedSupport(const void* o, const ccd_vec3_t* direction, ccd_vec3_t* out) {
   const auto* b = static_cast<const BoundedObject*>(o);
-  if (++*b->calls > b->limit || !(std::isfinite(direction->v[0]) &&
-                                   std::isfinite(direction->v[1]) &&
-                                   std::isfinite(direction->v[2]))) {
+  if (++*b->calls > b->limit ||
+      !(std::isfinite(direction->v[0]) && std::isfinite(direction->v[1]) &&
+        std::isfinite(direction->v[2]))) {
     std::longjmp(*b->bail, 1);
   }
   b->support(b->object, direction, out);

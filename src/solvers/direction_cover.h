@@ -100,10 +100,10 @@ class DirectionCover {
   /// its four children at 4p … 4p + 3 on the next; the coarsest level's cell (face, i, j) is
   /// at (face·kCoarse + i)·kCoarse + j. The geometry, the same for every shape.
   struct LevelGeometry {
-    std::vector<S> ax, ay, az;  // unit centre direction a
-    std::vector<S> cos_t;       // cosine of the cell's half-angle θ about a (rounded down)
-    std::vector<S> sin2_t;      // sin²θ (rounded up)
-    std::vector<S> chord;       // ‖n − a‖ ≤ chord for every n of the cell (rounded up)
+    std::vector<S> ax, ay, az;       // unit centre direction a
+    std::vector<S> cos_t;            // cosine of the cell's half-angle θ about a (rounded down)
+    std::vector<S> sin2_t;           // sin²θ (rounded up)
+    std::vector<S> chord;            // ‖n − a‖ ≤ chord for every n of the cell (rounded up)
     std::vector<std::uint8_t> face;  // the cube face the cell lies on
   };
 
@@ -122,8 +122,8 @@ class DirectionCover {
   /// Groups whose support points are evaluated together, each with its flag in ready_: the
   /// coarsest level (one group), the four children of each cell of the levels above the finest,
   /// and the four first-split-grid cells inside each finest cell.
-  static constexpr std::size_t kLevelGroups[kLevels] = {1, 3 * kCoarse * kCoarse,
-                                                        3 * 4 * kCoarse * kCoarse};
+  static constexpr std::size_t kLevelGroups[kLevels] = {1, 3 * kCoarse* kCoarse,
+                                                        3 * 4 * kCoarse* kCoarse};
   static constexpr std::size_t kGroups =
       kLevelGroups[0] + kLevelGroups[1] + kLevelGroups[2] + kFinestCells;
   static_assert(kLevels == 3, "kLevelGroups lists three levels");
@@ -137,8 +137,8 @@ class DirectionCover {
   void once(std::size_t group, const Fill& fill) const;
 
   const std::array<LevelGeometry, kLevels>& geometry_;  // coverGeometry(), per process
-  NestedNorm<S> support_;  // the shape's support function
-  S size_;                 // the shape's size (its largest radius)
+  NestedNorm<S> support_;                               // the shape's support function
+  S size_;                                              // the shape's size (its largest radius)
   mutable std::array<LevelSupport, kLevels> levels_;
   /// The support points of the first grid below the finest stored level (2·kFinestSide cells
   /// per face side, 3,072 in all), which capWithin would otherwise evaluate most often: x, y, z

@@ -288,7 +288,8 @@ TYPED_TEST(BadInputTest, FclFrontEndAndTables) {
 }
 
 // Another shape with a parameter that is not finite, a negative length, or a coordinate beyond
-// max/16 (an ellipsoid's radii: beyond NumericRange<S>::kMaxRadius): refused by distance and collide, front end and FCL's call alike, naming the value.
+// max/16 (an ellipsoid's radii: beyond NumericRange<S>::kMaxRadius): refused by distance and
+// collide, front end and FCL's call alike, naming the value.
 TYPED_TEST(BadInputTest, ShapePairPartners) {
   using S = TypeParam;
   const auto shape = std::make_shared<Superellipsoid<S>>(1, 1, 1, 1, 1);

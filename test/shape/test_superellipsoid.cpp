@@ -469,8 +469,9 @@ TYPED_TEST(SuperellipsoidTest, DirectionCoverIsBuiltOnceCellByCellForAllThreads)
   std::vector<Vector3<S>> ys;
   for (int k = 0; k < 24; ++k) {
     const S t = S(0.1) + S(0.8) * S(k % 6) / S(5);
-    ys.push_back(t * Vector3<S>(S(1 + k % 3), S(1 + k % 5), S(1 + k % 4)).normalized()
-                       .cwiseProduct(radii) * S(0.5));
+    ys.push_back(
+        t * Vector3<S>(S(1 + k % 3), S(1 + k % 5), S(1 + k % 4)).normalized().cwiseProduct(radii) *
+        S(0.5));
   }
   struct Answer {
     Vector3<S> start;
@@ -635,11 +636,12 @@ TEST(RollingRadius, BelowEveryRadiusOfCurvatureAndCloseToTheSmallest) {
 // on random shapes beyond it (these among them), so the rolling ball certified inside answers it
 // should not have.
 TEST(RollingRadius, BelowEveryRadiusOfCurvatureOnElongatedShapes) {
-  const std::array<double, 5> shapes[] = {{1.55378e-05, 0.0669112, 0.0383264, 0.270677, 0.890368},
-                                          {0.0137929, 4.55755e-06, 0.00199165, 0.598152, 0.944018},
-                                          {0.0428968, 2.39194e-06, 0.0885745, 0.401245, 0.6377},
-                                          {9.10287e-07, 3.03668e-10, 0.000166513, 0.518085, 0.836271},
-                                          {0.671916, 2181.24, 4780.31, 0.496709, 0.741248}};
+  const std::array<double, 5> shapes[] = {
+      {1.55378e-05, 0.0669112, 0.0383264, 0.270677, 0.890368},
+      {0.0137929, 4.55755e-06, 0.00199165, 0.598152, 0.944018},
+      {0.0428968, 2.39194e-06, 0.0885745, 0.401245, 0.6377},
+      {9.10287e-07, 3.03668e-10, 0.000166513, 0.518085, 0.836271},
+      {0.671916, 2181.24, 4780.31, 0.496709, 0.741248}};
   for (const auto& p : shapes) {
     const std::array<double, 3> a = {p[0], p[1], p[2]};
     const Superellipsoid<double> shape{a[0], a[1], a[2], p[3], p[4]};
