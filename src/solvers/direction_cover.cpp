@@ -231,7 +231,7 @@ void DirectionCover<S>::ensureLevel(int level, std::size_t parent) const {
 
 template <typename S>
 void DirectionCover<S>::ensureSplit(std::size_t p) const {
-  once(kLevelGroups[0] + kLevelGroups[1] + kLevelGroups[2] + p, [&] {
+  once(kSplitGroups + p, [&] {
     // The first split grid's support points, relative to the size and pulled inward by 2^-20:
     // G is 1-homogeneous and grows with each coordinate in the octant, so the roundings on the
     // way (to float and back, a few ulps of float at most) leave the point inside the shape.

@@ -124,8 +124,9 @@ class DirectionCover {
   /// and the four first-split-grid cells inside each finest cell.
   static constexpr std::size_t kLevelGroups[kLevels] = {1, 3 * kCoarse* kCoarse,
                                                         3 * 4 * kCoarse* kCoarse};
-  static constexpr std::size_t kGroups =
-      kLevelGroups[0] + kLevelGroups[1] + kLevelGroups[2] + kFinestCells;
+  /// The first split-grid group's flag: after every level's.
+  static constexpr std::size_t kSplitGroups = kLevelGroups[0] + kLevelGroups[1] + kLevelGroups[2];
+  static constexpr std::size_t kGroups = kSplitGroups + kFinestCells;
   static_assert(kLevels == 3, "kLevelGroups lists three levels");
   /// Makes sure the support points of level `level`'s children of cell `parent` (level 0: every
   /// cell, parent ignored) are evaluated.
