@@ -1,5 +1,6 @@
 // Google Benchmark micro-benchmarks: one query per iteration, cycling through 1,024 points
-// near the surface, for each method and shape class; a new shape's first inside query, and new
+// near the surface, for each method and shape class, and the Exact value against its
+// derivatives; a new shape's first inside query, and new
 // shapes' first queries near the surface against the same on warm shapes; and the
 // batched Exact query over the same 1,024 points per iteration, on SIMD lanes and on the scalar
 // path, and over a contact band of the cloth shape (±0.05 of its surface, half inside). The full
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "fcl_superellipsoid/batch_distance.h"
+#include "fcl_superellipsoid/point_derivatives.h"
 #include "fcl_superellipsoid/point_distance.h"
 #include "methods.h"
 
@@ -42,6 +44,29 @@ void runQueries(benchmark::State& state, const std::string& shape_class,
   std::size_t i = 0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(method->query(points.points[i]));
+    i = (i + 1) & 1023;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+/// The cost of the derivatives (point_derivatives.h) over the same 1,024 points near the
+/// surface: the Exact value alone (pointDistance), with its gradient, and with the Jacobians.
+enum class Derivatives { kValue, kGradient, kJacobians };
+
+void runDerivatives(benchmark::State& state, const std::string& shape_class, Derivatives what) {
+  const Superellipsoid<double> shape = shapeClass(shape_class).make();
+  const std::vector<Vector3<double>> points =
+      makePointSet(shapeClass(shape_class), Side::kNear, 1024, 1, 7).points;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    if (what == Derivatives::kValue) {
+      benchmark::DoNotOptimize(pointDistance(shape, points[i]));
+    } else {
+      benchmark::DoNotOptimize(pointDistanceDerivatives(shape, points[i],
+                                                        what == Derivatives::kGradient
+                                                            ? DerivativeOrder::kGradient
+                                                            : DerivativeOrder::kJacobians));
+    }
     i = (i + 1) & 1023;
   }
   state.SetItemsProcessed(state.iterations());
@@ -175,6 +200,16 @@ void registerAll() {
     benchmark::RegisterBenchmark(
         (std::string("FirstInsideQuery/") + shape_class).c_str(),
         [shape_class](benchmark::State& state) { runFirstInsideQuery(state, shape_class); });
+  }
+  for (const char* shape_class : {"round", "sharp", "pinched", "cloth"}) {
+    for (const auto& [name, what] :
+         {std::pair{"Value", Derivatives::kValue}, std::pair{"Gradient", Derivatives::kGradient},
+          std::pair{"Jacobians", Derivatives::kJacobians}}) {
+      benchmark::RegisterBenchmark((std::string("Derivatives/") + name + "/" + shape_class).c_str(),
+                                   [shape_class, what = what](benchmark::State& state) {
+                                     runDerivatives(state, shape_class, what);
+                                   });
+    }
   }
   for (const bool fresh : {true, false}) {
     benchmark::RegisterBenchmark(

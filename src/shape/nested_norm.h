@@ -50,6 +50,8 @@ template <typename S>
 struct PowersLog2 {
   S pow_a, pow_b;  // (a/N)^(p−1), (b/N)^(p−1)
   S q, log2_1pq;   // t^p, log2(1 + t^p)
+  S log2_ratio;    // log2 t (−∞ where t = 0), for the derivatives (shape/gauge_derivatives.h)
+  bool a_is_max;
 };
 
 template <typename S>
@@ -69,8 +71,8 @@ inline PowersLog2<S> pnorm2PowersLog2(bool a_is_max, S ratio, S log2_ratio, S p,
                                                  : std::pow(ratio, p - S(1))) *
              pow_m;
   }
-  return a_is_max ? PowersLog2<S>{pow_m, pow_lo, q, log2_one_plus_q}
-                  : PowersLog2<S>{pow_lo, pow_m, q, log2_one_plus_q};
+  return a_is_max ? PowersLog2<S>{pow_m, pow_lo, q, log2_one_plus_q, log2_ratio, true}
+                  : PowersLog2<S>{pow_lo, pow_m, q, log2_one_plus_q, log2_ratio, false};
 }
 
 /// sgn(c)·|c|^e, the signed power of the parametric form.

@@ -120,6 +120,7 @@ class ExactSolver {
     const Candidate<S> radial = candidateFrom(y_, at_y);
     const bool warm = !inside_ && q_.hint != nullptr && !q_.hint->isZero(S(0));
     Candidate<S> best = refine(firstStart(radial, warm, g_y));
+    noteConverged(best);
     if (inside_) {
       searchInside(g_y, &best);
     } else {
@@ -268,6 +269,7 @@ class ExactSolver {
     tryRingRotations(best);            // if nothing converged yet
     if (g_y < S(rules::kDeepGauge)) {  // deep inside: the centre's candidates may be nearer
       const Candidate<S> other = solveAtCentre();
+      noteConverged(other);
       if (isBetter(other, *best)) *best = other;
     }
   }
@@ -420,6 +422,7 @@ class ExactSolver {
                 int share = rules::kIterationsPerStart) {
     const Candidate<S> c = refine(start, share);
     noteSurfacePoint(c.point);
+    noteConverged(c);
     if (isBetter(c, *best)) *best = c;
   }
 
@@ -430,6 +433,12 @@ class ExactSolver {
       nearest_squared_ = squared;
       nearest_point_ = point;
     }
+  }
+
+  /// Keeps a converged answer for the runner-up (Query::runner_up, finish()).
+  void noteConverged(const Candidate<S>& c) {
+    if (q_.runner_up == nullptr || !(c.error <= q_.tolerance)) return;
+    if (converged_count_ < converged_.size()) converged_[converged_count_++] = c.point;
   }
 
   /// Newton in the smoother formulation first; if that stalls, in the other, warm-started where
@@ -783,6 +792,16 @@ class ExactSolver {
     r.error = c.error;
     r.iterations = c.iterations;
     r.converged = c.error <= q_.tolerance;
+    if (q_.runner_up != nullptr) {
+      const S separation = std::sqrt(q_.tolerance * q_.shape.size());
+      S runner_up = std::numeric_limits<S>::infinity();
+      for (std::size_t i = 0; i < converged_count_; ++i) {
+        if ((converged_[i] - c.point).norm() > separation) {
+          runner_up = std::min(runner_up, (y_ - converged_[i]).norm());
+        }
+      }
+      *q_.runner_up = runner_up;
+    }
     return r;
   }
 
@@ -802,6 +821,9 @@ class ExactSolver {
   // Inside: the surface point nearest to Q among the starts' answers (noteSurfacePoint).
   Vector3<S> nearest_point_ = Vector3<S>::Zero();
   S nearest_squared_ = std::numeric_limits<S>::infinity();
+  // The converged answers, if the query asks for the runner-up (noteConverged).
+  std::array<Vector3<S>, 16> converged_;
+  std::size_t converged_count_ = 0;
 };
 
 }  // namespace

@@ -13,24 +13,30 @@ template <typename T>
   detail::throwInvalidArgument("pointDistance", requirement, value);
 }
 
-template <typename S>
-void validate(const Vector3<S>& p, const DistanceOptions<S>& options) {
-  if (!p.allFinite()) throwInvalid("the query point must be finite", p);
-  if (!detail::withinCoordinateRange(p)) {
-    throwInvalid("the query point's coordinates must be at most " +
-                     detail::formatValue(detail::maxCoordinate<S>()) + " in magnitude",
-                 p);
-  }
-  validateOptions(options);
-}
-
 }  // namespace
 
 namespace detail {
 template <typename S>
-PointDistanceResult<S> solve(const Superellipsoid<S>& shape, const Vector3<S>& p_SQ,
-                             const Vector3<S>* hint, const DistanceOptions<S>& options);
+void validateQuery(const char* function, const Vector3<S>& p, const DistanceOptions<S>& options) {
+  if (!p.allFinite()) throwInvalidArgument(function, "the query point must be finite", p);
+  if (!withinCoordinateRange(p)) {
+    throwInvalidArgument(function,
+                         "the query point's coordinates must be at most " +
+                             formatValue(maxCoordinate<S>()) + " in magnitude",
+                         p);
+  }
+  validateOptions(options);
+}
+template void validateQuery(const char*, const Vector3<float>&, const DistanceOptions<float>&);
+template void validateQuery(const char*, const Vector3<double>&, const DistanceOptions<double>&);
 }  // namespace detail
+
+namespace {
+template <typename S>
+void validate(const Vector3<S>& p, const DistanceOptions<S>& options) {
+  detail::validateQuery("pointDistance", p, options);
+}
+}  // namespace
 
 template <typename S>
 void validateOptions(const DistanceOptions<S>& options) {
@@ -100,13 +106,19 @@ template PointDistanceResult<double> solveFar(const Superellipsoid<double>&, con
 
 template <typename S>
 PointDistanceResult<S> solve(const Superellipsoid<S>& shape, const Vector3<S>& p_SQ,
-                             const Vector3<S>* hint, const DistanceOptions<S>& options) {
+                             const Vector3<S>* hint, const DistanceOptions<S>& options,
+                             S* runner_up) {
+  if (runner_up != nullptr) *runner_up = std::numeric_limits<S>::infinity();
   if (isFarQuery(shape, p_SQ)) return solveFar(shape, p_SQ, options.tolerance);
   // Below a few ulps of the query's magnitude no method can resolve the error estimate: the
   // tolerance has a rounding floor (exact_rules.h), for every method.
   const detail::Query<S> q{
-      shape, p_SQ, exact_rules::absoluteTolerance(options.tolerance, shape.size(), p_SQ.norm()),
-      options.max_iterations, hint};
+      shape,
+      p_SQ,
+      exact_rules::absoluteTolerance(options.tolerance, shape.size(), p_SQ.norm()),
+      options.max_iterations,
+      hint,
+      runner_up};
   // At the exact centre the radial direction is undefined, so every method answers with the
   // Exact solver's centre search (documented in point_distance.h).
   if (p_SQ.isZero(S(0))) return detail::solveExact(q);
@@ -130,6 +142,13 @@ PointDistanceResult<S> solve(const Superellipsoid<S>& shape, const Vector3<S>& p
   }
   throwInvalid("options.method is not a DistanceMethod", static_cast<int>(options.method));
 }
+
+template PointDistanceResult<float> solve(const Superellipsoid<float>&, const Vector3<float>&,
+                                          const Vector3<float>*, const DistanceOptions<float>&,
+                                          float*);
+template PointDistanceResult<double> solve(const Superellipsoid<double>&, const Vector3<double>&,
+                                           const Vector3<double>*, const DistanceOptions<double>&,
+                                           double*);
 
 template <typename S>
 PointDistanceResult<S> pointDistanceWithHint(const Superellipsoid<S>& shape, const Vector3<S>& p_SQ,

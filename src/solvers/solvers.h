@@ -25,6 +25,12 @@ struct Query {
   // simulation step's nearest point; nullptr for none. Used as the first start outside, where
   // the problem is convex and any converged start gives the one answer; ignored inside.
   const Vector3<S>* hint = nullptr;
+  // Exact method only, if set: receives the distance from Q of the nearest converged answer
+  // that is not the returned one (farther from it than √(tolerance·size)), ∞ if none. A value
+  // within the tolerance of the distance says Q has several nearest points (a tie: the
+  // derivatives' flag, solvers/point_derivatives.cpp). Not set for far and near-centre
+  // queries, which are answered without the search.
+  S* runner_up = nullptr;
 };
 
 /// True for a query point so far from the shape (beyond 2^digits × size along an axis) that the
@@ -65,6 +71,18 @@ template <typename S>
 PointDistanceResult<S> pointDistanceWithHint(const Superellipsoid<S>& shape, const Vector3<S>& p_SQ,
                                              const Vector3<S>& hint_S,
                                              const DistanceOptions<S>& options);
+
+/// Checks a query as pointDistance() does (p finite and within the coordinate range, the
+/// options valid); the error names `function` and the bad value.
+template <typename S>
+void validateQuery(const char* function, const Vector3<S>& p, const DistanceOptions<S>& options);
+
+/// pointDistance() after validation: a far or near-centre query's closed form, else the
+/// options' method; hint and runner_up as in Query (nullptr for none).
+template <typename S>
+PointDistanceResult<S> solve(const Superellipsoid<S>& shape, const Vector3<S>& p_SQ,
+                             const Vector3<S>* hint, const DistanceOptions<S>& options,
+                             S* runner_up = nullptr);
 
 /// The primal formulation (gauge G) is smooth where ε ≤ 1, the dual (support function h) where
 /// ε ≥ 1: the Exact method starts with the one whose worst exponent strays less from its smooth

@@ -19,6 +19,7 @@
 
 #include "fcl_superellipsoid/batch_distance.h"
 #include "fcl_superellipsoid/fcl_integration.h"
+#include "fcl_superellipsoid/point_derivatives.h"
 #include "fcl_superellipsoid/point_distance.h"
 #include "fcl_superellipsoid/tessellation.h"
 #include "test_helpers.h"
@@ -171,6 +172,34 @@ TYPED_TEST(BadInputTest, PointDistance) {
     expectRefused([&] { pointDistance(shape, pose, Vector3<S>::Ones(), ok); }, "pointDistance",
                   "its translation at most", "(");
   }
+}
+
+TYPED_TEST(BadInputTest, PointDerivatives) {
+  using S = TypeParam;
+  const Superellipsoid<S> shape(1, 1, 1, S(0.5), S(0.5));
+  const auto gradient = DerivativeOrder::kGradient;
+  expectRefused([&] { pointDistanceDerivatives(shape, Vector3<S>(TestFixture::nan, 0, 0)); },
+                "pointDistanceDerivatives", "the query point must be finite", "(nan, 0, 0)");
+  fcl::Transform3<S> pose = fcl::Transform3<S>::Identity();
+  expectRefused([&] { pointDistanceDerivatives(shape, pose, Vector3<S>(0, TestFixture::inf, 0)); },
+                "pointDistanceDerivatives", "the query point must be finite", "(0, inf, 0)");
+  pose.translation() = Vector3<S>(0, TestFixture::nan, 0);
+  expectRefused([&] { pointDistanceDerivatives(shape, pose, Vector3<S>::Ones()); },
+                "pointDistanceDerivatives", "the pose X_WS must be finite", "(0, nan, 0)");
+  for (auto method : {DistanceMethod::kPaper, DistanceMethod::kRadial}) {
+    expectRefused(
+        [&] {
+          pointDistanceDerivatives(shape, Vector3<S>(2, 0, 0), gradient,
+                                   DistanceOptions<S>::of(method));
+        },
+        "pointDistanceDerivatives", "options.method must be DistanceMethod::kExact",
+        toString(method));
+  }
+  expectRefused(
+      [&] {
+        pointDistanceDerivatives(shape, Vector3<S>(2, 0, 0), static_cast<DerivativeOrder>(7));
+      },
+      "pointDistanceDerivatives", "order must be a DerivativeOrder", "7");
 }
 
 TYPED_TEST(BadInputTest, TessellateAndMeshes) {

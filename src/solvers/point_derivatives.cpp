@@ -1,0 +1,239 @@
+// The derivatives of the point distance (docs/math.md → "Derivatives of the distance"): the
+// Exact solver's answer N, n, d, then first order from the gauge's derivatives at N
+// (shape/gauge_derivatives.h), second order from the optimality conditions
+//   N − Q + λ∇G(N) = 0,   G(N) = 1,   λ = d/‖∇G(N)‖,
+// differentiated (the implicit function theorem) and solved in N's tangent plane:
+//   δN = P·a + n·β,   β = −(∂G/∂θ·δθ)/‖∇G‖,
+//   (I + λ·PᵀHP)·a = Pᵀ(δQ − λ·(∂∇G/∂θ)·δθ + λ·H·n·(∂G/∂θ·δθ)/‖∇G‖),
+// with P an orthonormal basis of N's tangent plane; solved as the bordered system in (δN, δλ),
+// equilibrated, with δN_i = 0 across a crease (the curvature is unbounded there).
+
+#include "fcl_superellipsoid/point_derivatives.h"
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <limits>
+
+#include "common/coordinate_range.h"
+#include "common/invalid_argument.h"
+#include "shape/gauge_derivatives.h"
+#include "solvers/exact_rules.h"
+#include "solvers/solvers.h"
+
+namespace fcl_superellipsoid {
+namespace {
+
+// N's tangent plane: fixed-capacity matrices, no allocation.
+template <typename S>
+using Reduced = Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic, 0, 2, 2>;
+template <typename S>
+using TangentBasis = Eigen::Matrix<S, 3, Eigen::Dynamic, 0, 3, 2>;
+
+template <typename S>
+Eigen::Matrix<S, 3, 3> cross(const Vector3<S>& v) {
+  Eigen::Matrix<S, 3, 3> m;
+  m << S(0), -v[2], v[1], v[2], S(0), -v[0], -v[1], v[0], S(0);
+  return m;
+}
+
+/// The pose columns (ω, v) of a point's and a normal's Jacobians from their Q Jacobians, all in
+/// one frame (point_derivatives.h): moving the shape by ξ moves N by ω × N + v and Q, seen from
+/// the shape, by −(ω × Q + v).
+template <typename S>
+void poseJacobians(const Vector3<S>& q, PointDistanceDerivatives<S>* out) {
+  const Eigen::Matrix<S, 3, 3> qx = cross(q);
+  const Vector3<S>& point = out->value.nearest_point;
+  const Vector3<S>& normal = out->value.normal;
+  out->nearest_point_d_pose << -cross(point) + out->nearest_point_d_query * qx,
+      Eigen::Matrix<S, 3, 3>::Identity() - out->nearest_point_d_query;
+  out->normal_d_pose << -cross(normal) + out->normal_d_query * qx, -out->normal_d_query;
+}
+
+template <typename S>
+PointDistanceDerivatives<S> derivativesInShapeFrame(const Superellipsoid<S>& shape,
+                                                    const Vector3<S>& q, DerivativeOrder order,
+                                                    const DistanceOptions<S>& options) {
+  detail::validateQuery("pointDistanceDerivatives", q, options);
+  if (options.method != DistanceMethod::kExact) {
+    detail::throwInvalidArgument("pointDistanceDerivatives",
+                                 "options.method must be DistanceMethod::kExact",
+                                 std::string(toString(options.method)));
+  }
+  if (order != DerivativeOrder::kGradient && order != DerivativeOrder::kJacobians) {
+    detail::throwInvalidArgument("pointDistanceDerivatives", "order must be a DerivativeOrder",
+                                 static_cast<int>(order));
+  }
+  PointDistanceDerivatives<S> out;
+  S runner_up = std::numeric_limits<S>::infinity();
+  out.value = detail::solve<S>(shape, q, nullptr, options, &runner_up);
+  const Vector3<S>& point = out.value.nearest_point;
+  const Vector3<S>& n = out.value.normal;
+  const S d = out.value.distance;
+  const bool jacobians = order == DerivativeOrder::kJacobians;
+  const detail::GaugeDerivatives<S> gauge = detail::gaugeDerivatives(shape, point, jacobians);
+  const S g = gauge.gradient.norm();
+
+  out.d_query = n;
+  out.d_pose << cross(n) * point, -n;
+  out.d_shape = gauge.d_parameters.transpose() / g;
+
+  // Ties: the solver's runner-up, and the mirror image of N across a coordinate plane that Q
+  // lies on (or nearly): its distance exceeds |d| by 4|Q_i·N_i|/(d' + |d|).
+  const S tolerance =
+      detail::exact_rules::absoluteTolerance(options.tolerance, shape.size(), q.norm());
+  const S separation = std::sqrt(tolerance * shape.size());
+  const S tie = S(4) * tolerance;
+  const S depth = std::abs(d);
+  if (q.isZero(S(0)) || runner_up - depth <= tie) out.differentiable = false;
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(point[i]) <= separation) continue;
+    const S product = S(4) * std::abs(q[i] * point[i]);
+    const S mirrored = std::sqrt(d * d + product);
+    if (product / (mirrored + depth) <= tie) out.differentiable = false;
+  }
+
+  if (!jacobians) {
+    out.nearest_point_d_query.setZero();
+    out.nearest_point_d_pose.setZero();
+    out.nearest_point_d_shape.setZero();
+    out.normal_d_query.setZero();
+    out.normal_d_pose.setZero();
+    out.normal_d_shape.setZero();
+    return out;
+  }
+  const S lambda = d / g;
+  const S floor = std::sqrt(std::numeric_limits<S>::epsilon());
+  // Inside, Q at a centre of curvature of N: an eigenvalue 1 + λ·(curvature) of the system in
+  // N's tangent plane, K = I + λ·PᵀHP, vanishes (outside, λ > 0 and K ≥ I): the distance is
+  // differentiable there, N is not. Floored, so the Jacobians stay finite (and large) there.
+  Reduced<S> k_inverse;
+  TangentBasis<S> tangent;
+  if (lambda < S(0)) {
+    const Eigen::HouseholderQR<Vector3<S>> qr(n);
+    const Eigen::Matrix<S, 3, 3> basis = qr.householderQ();
+    tangent = basis.rightCols(2);
+    const Reduced<S> k =
+        Reduced<S>::Identity(2, 2) + lambda * tangent.transpose() * gauge.hessian * tangent;
+    const Eigen::SelfAdjointEigenSolver<Reduced<S>> eigen(k);
+    Eigen::Matrix<S, Eigen::Dynamic, 1, 0, 2, 1> values = eigen.eigenvalues();
+    if (values.minCoeff() <= floor * std::max(S(1), values.maxCoeff())) {
+      out.differentiable = false;
+    }
+    values = values.cwiseMax(floor);
+    k_inverse = eigen.eigenvectors() * values.cwiseInverse().asDiagonal() *
+                eigen.eigenvectors().transpose();
+  }
+  out.has_jacobians = true;
+
+  // The differentiated optimality conditions, unknowns (δN, δλ), right-hand sides for δQ (3) and
+  // δθ (5). A crease's direction has δN_i = 0 (its row and column become the identity's). Rows
+  // and columns are scaled to unit diagonal (H is unbounded near a crease, and the small
+  // curvatures beside a large one would be lost in a solve of the raw system).
+  Eigen::Matrix<S, 4, 4> system = Eigen::Matrix<S, 4, 4>::Zero();
+  system.template topLeftCorner<3, 3>() =
+      Eigen::Matrix<S, 3, 3>::Identity() + lambda * gauge.hessian;
+  system.template topRightCorner<3, 1>() = gauge.gradient;
+  system.template bottomLeftCorner<1, 3>() = gauge.gradient.transpose();
+  Eigen::Matrix<S, 4, 8> rhs = Eigen::Matrix<S, 4, 8>::Zero();
+  rhs.template topLeftCorner<3, 3>().setIdentity();
+  rhs.template topRightCorner<3, 5>() = -lambda * gauge.gradient_d_parameters;
+  rhs.template bottomRightCorner<1, 5>() = -gauge.d_parameters;
+  bool crease = false;
+  for (int i = 0; i < 3; ++i) {
+    if (!gauge.crease[i]) continue;
+    crease = true;
+    system.row(i).setZero();
+    system.col(i).setZero();
+    system(i, i) = S(1);
+    rhs.row(i).setZero();
+  }
+  Eigen::Matrix<S, 4, 1> scale;
+  for (int i = 0; i < 3; ++i) scale[i] = S(1) / std::sqrt(std::max(std::abs(system(i, i)), S(1)));
+  scale[3] =
+      S(1) / std::max(scale.template head<3>().cwiseProduct(gauge.gradient).cwiseAbs().maxCoeff(),
+                      std::numeric_limits<S>::min());
+  const Eigen::Matrix<S, 4, 4> scaled = scale.asDiagonal() * system * scale.asDiagonal();
+  Eigen::Matrix<S, 4, 8> solution =
+      scale.asDiagonal() * scaled.fullPivLu().solve(scale.asDiagonal() * rhs);
+  if (!solution.allFinite() && lambda < S(0)) {
+    // Singular (Q at a centre of curvature): the floored tangent-plane inverse instead.
+    const Eigen::Matrix<S, 3, 3> projector = tangent * k_inverse * tangent.transpose();
+    const Eigen::Matrix<S, 1, 5> beta = -gauge.d_parameters / g;  // n·δN per δθ
+    solution.template topLeftCorner<3, 3>() = projector;
+    solution.template topRightCorner<3, 5>() =
+        projector * (-lambda * gauge.gradient_d_parameters - lambda * gauge.hessian * n * beta) +
+        n * beta;
+  }
+  out.nearest_point_d_query = solution.template topLeftCorner<3, 3>();
+  out.nearest_point_d_shape = solution.template topRightCorner<3, 5>();
+
+  // The normal: from n = (Q − N)/d where the curvature term dominates (|λ|·‖H‖ ≥ 1, also across
+  // a crease), else from n = ∇G/‖∇G‖ (near the surface, where dividing by d would magnify N's
+  // rounding).
+  const Eigen::Matrix<S, 3, 3> across = Eigen::Matrix<S, 3, 3>::Identity() - n * n.transpose();
+  if (d != S(0) && (crease || std::abs(lambda) * gauge.hessian.cwiseAbs().maxCoeff() >= S(1))) {
+    out.normal_d_query = (across - out.nearest_point_d_query) / d;
+    out.normal_d_shape = -(out.nearest_point_d_shape + n * out.d_shape.transpose()) / d;
+  } else {
+    out.normal_d_query = across * gauge.hessian * out.nearest_point_d_query / g;
+    out.normal_d_shape =
+        across * (gauge.hessian * out.nearest_point_d_shape + gauge.gradient_d_parameters) / g;
+    if (crease) out.differentiable = false;  // on the surface at a crease: a normal cone
+  }
+  poseJacobians(q, &out);
+  return out;
+}
+
+}  // namespace
+
+template <typename S>
+PointDistanceDerivatives<S> pointDistanceDerivatives(
+    const Superellipsoid<S>& shape, const detail::NonDeduced<Vector3<S>>& p_SQ,
+    DerivativeOrder order, const detail::NonDeduced<DistanceOptions<S>>& options) {
+  return derivativesInShapeFrame(shape, p_SQ, order, options);
+}
+
+template <typename S>
+PointDistanceDerivatives<S> pointDistanceDerivatives(
+    const Superellipsoid<S>& shape, const detail::NonDeduced<fcl::Transform3<S>>& X_WS,
+    const detail::NonDeduced<Vector3<S>>& p_WQ, DerivativeOrder order,
+    const detail::NonDeduced<DistanceOptions<S>>& options) {
+  detail::validateQuery("pointDistanceDerivatives", p_WQ, options);
+  detail::checkPose("pointDistanceDerivatives", "X_WS", X_WS);
+  const Vector3<S> p_SQ = X_WS.inverse(Eigen::Isometry) * p_WQ;
+  PointDistanceDerivatives<S> out = derivativesInShapeFrame(shape, p_SQ, order, options);
+  const Eigen::Matrix<S, 3, 3> r = X_WS.linear();
+  out.value.nearest_point = X_WS * out.value.nearest_point;
+  out.value.normal = r * out.value.normal;
+  out.d_query = out.value.normal;
+  out.d_pose << cross(out.value.normal) * out.value.nearest_point, -out.value.normal;
+  if (out.has_jacobians) {
+    out.nearest_point_d_query = r * out.nearest_point_d_query * r.transpose();
+    out.nearest_point_d_shape = r * out.nearest_point_d_shape;
+    out.normal_d_query = r * out.normal_d_query * r.transpose();
+    out.normal_d_shape = r * out.normal_d_shape;
+    poseJacobians(p_WQ, &out);
+  }
+  return out;
+}
+
+template PointDistanceDerivatives<float> pointDistanceDerivatives(const Superellipsoid<float>&,
+                                                                  const Vector3<float>&,
+                                                                  DerivativeOrder,
+                                                                  const DistanceOptions<float>&);
+template PointDistanceDerivatives<double> pointDistanceDerivatives(const Superellipsoid<double>&,
+                                                                   const Vector3<double>&,
+                                                                   DerivativeOrder,
+                                                                   const DistanceOptions<double>&);
+template PointDistanceDerivatives<float> pointDistanceDerivatives(const Superellipsoid<float>&,
+                                                                  const fcl::Transform3<float>&,
+                                                                  const Vector3<float>&,
+                                                                  DerivativeOrder,
+                                                                  const DistanceOptions<float>&);
+template PointDistanceDerivatives<double> pointDistanceDerivatives(const Superellipsoid<double>&,
+                                                                   const fcl::Transform3<double>&,
+                                                                   const Vector3<double>&,
+                                                                   DerivativeOrder,
+                                                                   const DistanceOptions<double>&);
+
+}  // namespace fcl_superellipsoid
