@@ -3,7 +3,8 @@
 #   BUILD_DIR empty: configure and build the library afresh with BUILD_SHARED_LIBS=${BUILD_SHARED}
 #                    (so the suite checks the other library kind too), then install it. That
 #                    build is unoptimised (Debug, -O0): it checks how the kind is packaged and
-#                    linked, not its speed, in half the compile time of a Release build.
+#                    linked, not its speed, in half the compile time of a Release build; and it
+#                    builds what is installed only (no tests, benchmark, scene runner or module).
 # Then configure, build and run the consumer against the prefix.
 file(REMOVE_RECURSE ${WORK_DIR})
 set(prefix ${WORK_DIR}/prefix)
@@ -17,7 +18,7 @@ if(NOT BUILD_DIR)
   set(BUILD_DIR ${WORK_DIR}/lib-build)
   run(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${BUILD_DIR} -G ${GENERATOR}
       -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-O0 -DBUILD_SHARED_LIBS=${BUILD_SHARED}
-      -DFSE_BUILD_TESTS=OFF -DFSE_BUILD_BENCH=OFF -DFSE_BUILD_PYTHON=OFF)
+      -DFSE_BUILD_TESTS=OFF -DFSE_BUILD_BENCH=OFF -DFSE_BUILD_SIM=OFF -DFSE_BUILD_PYTHON=OFF)
   run(${CMAKE_COMMAND} --build ${BUILD_DIR} --parallel 2)
 endif()
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
