@@ -27,7 +27,8 @@ case "${1:-}" in
     tests=(-E "^package_") ;;
   --tsan)
     build=build-tsan
-    flags=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DFSE_SANITIZE_THREAD=ON -DFSE_BUILD_BENCH=OFF)
+    flags=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g1 -DNDEBUG"
+           -DFSE_SANITIZE_THREAD=ON -DFSE_BUILD_BENCH=OFF)
     targets=(--target test_shape test_threads test_batch test_fcl_glue test_interpose test_sim)
     tests=(-R "ThreadSafety|EvaluationsArePerThread|Interpose.FirstCallsRace|BatchDistance|RollingRadiusIsComputedOnce|DirectionCoverIsBuiltOnce|FclIntegration|SameResultsForOneAndTwoThreads|OneAndTwoThreadsGiveIdenticalResults") ;;
   "") ;;
