@@ -14,7 +14,9 @@ if [ $# -ge 1 ]; then targets=("$1"); fi
 if [ $# -ge 2 ]; then runs=$2; fi
 if [ ! -x build-asan/fuzz/fuzz_fcl ]; then
   scripts/install-deps.sh --fuzz
+  # The same tree as scripts/test.sh --sanitize, with its flags.
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+    "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -gline-tables-only -DNDEBUG" \
     -DFSE_BUILD_FUZZ=ON -DFSE_BUILD_BENCH=OFF -DFSE_BUILD_TESTS=ON
 fi
 cmake --build build-asan --parallel "$(nproc)" --target "${targets[@]}"
