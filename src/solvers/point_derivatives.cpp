@@ -36,6 +36,14 @@ Eigen::Matrix<S, 3, 3> cross(const Vector3<S>& v) {
   return m;
 }
 
+/// ∂d/∂ξ = (n × N, −n), N and n in the frame of the twist ξ = (ω, v) (point_derivatives.h).
+template <typename S>
+Vector6<S> poseGradient(const Vector3<S>& normal, const Vector3<S>& point) {
+  Vector6<S> out;
+  out << cross(normal) * point, -normal;
+  return out;
+}
+
 /// The pose columns (ω, v) of a point's and a normal's Jacobians from their Q Jacobians, all in
 /// one frame (point_derivatives.h): moving the shape by ξ moves N by ω × N + v and Q, seen from
 /// the shape, by −(ω × Q + v).
@@ -74,7 +82,7 @@ PointDistanceDerivatives<S> derivativesInShapeFrame(const Superellipsoid<S>& sha
   const S g = gauge.gradient.norm();
 
   out.d_query = n;
-  out.d_pose << cross(n) * point, -n;
+  out.d_pose = poseGradient(n, point);
   out.d_shape = gauge.d_parameters.transpose() / g;
 
   // Ties: the solver's runner-up, and the mirror image of N across a coordinate plane that Q
@@ -206,7 +214,7 @@ PointDistanceDerivatives<S> pointDistanceDerivatives(
   out.value.nearest_point = X_WS * out.value.nearest_point;
   out.value.normal = r * out.value.normal;
   out.d_query = out.value.normal;
-  out.d_pose << cross(out.value.normal) * out.value.nearest_point, -out.value.normal;
+  out.d_pose = poseGradient(out.value.normal, out.value.nearest_point);
   if (out.has_jacobians) {
     out.nearest_point_d_query = r * out.nearest_point_d_query * r.transpose();
     out.nearest_point_d_shape = r * out.nearest_point_d_shape;
