@@ -3,19 +3,25 @@
 // derivatives; a new shape's first inside query, and new
 // shapes' first queries near the surface against the same on warm shapes; and the
 // batched Exact query over the same 1,024 points per iteration, on SIMD lanes and on the scalar
-// path, and over a contact band of the cloth shape (±0.05 of its surface, half inside). The full
+// path, and over a contact band of the cloth shape (±0.05 of its surface, half inside); the
+// contact manifold of a body resting on a face against one contact of the same pair. The full
 // comparison is fse_bench; this target is for profiling one method and for tracking regressions
 // with Google Benchmark's tooling (--benchmark_filter, --benchmark_format=json, compare.py).
 
 #include <benchmark/benchmark.h>
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/halfspace.h>
 
 #include <cmath>
 #include <functional>
 #include <map>
+#include <memory>
 #include <random>
 #include <vector>
 
 #include "fcl_superellipsoid/batch_distance.h"
+#include "fcl_superellipsoid/contact_manifold.h"
+#include "fcl_superellipsoid/fcl_integration.h"
 #include "fcl_superellipsoid/point_derivatives.h"
 #include "fcl_superellipsoid/point_distance.h"
 #include "methods.h"
@@ -171,6 +177,58 @@ void runNearSurface(benchmark::State& state, bool fresh) {
   state.SetItemsProcessed(state.iterations());
 }
 
+/// The contact manifold (contact_manifold.h) of a box-like body (ε = 0.2) resting on a face,
+/// pressed 1e-3 of its size into it and tilted up to 0.02 rad, over 64 such poses: against a
+/// halfspace, another box-like superellipsoid and a box. The whole manifold (contactManifold),
+/// FCL's collide() with four contacts (the manifold's places), and the one-contact collide() of
+/// the same pair as the baseline, measured in the same run.
+enum class ManifoldPartner { kHalfspace, kSuperellipsoid, kBox };
+enum class ManifoldCall { kOneContact, kFourContacts, kManifold };
+
+void runManifold(benchmark::State& state, ManifoldPartner partner, ManifoldCall call) {
+  const auto body = std::make_shared<Superellipsoid<double>>(0.5, 0.4, 0.3, 0.2, 0.2);
+  std::shared_ptr<fcl::CollisionGeometry<double>> other;
+  double half_height = 0;  // of the other, below the contact
+  if (partner == ManifoldPartner::kHalfspace) {
+    other = std::make_shared<fcl::Halfspace<double>>(Vector3<double>(0, 0, 1), 0.0);
+  } else if (partner == ManifoldPartner::kSuperellipsoid) {
+    other = std::make_shared<Superellipsoid<double>>(0.6, 0.5, 0.3, 0.2, 0.2);
+    half_height = 0.3;
+  } else {
+    other = std::make_shared<fcl::Box<double>>(1.2, 1.0, 0.6);
+    half_height = 0.3;
+  }
+  std::mt19937 rng(52);
+  std::uniform_real_distribution<double> tilt(-0.02, 0.02), shift(-0.1, 0.1);
+  std::vector<fcl::Transform3d> poses;
+  for (int k = 0; k < 64; ++k) {
+    fcl::Transform3d X = fcl::Transform3d::Identity();
+    X.linear() = (Eigen::AngleAxisd(tilt(rng), Eigen::Vector3d::UnitX()) *
+                  Eigen::AngleAxisd(tilt(rng), Eigen::Vector3d::UnitY()))
+                     .toRotationMatrix();
+    const double lowest =
+        (X * body->supportPoint(-(X.linear().transpose() * Vector3<double>::UnitZ()))).z();
+    X.translation() = Eigen::Vector3d(shift(rng), shift(rng), -lowest - 5e-4);
+    poses.push_back(X);
+  }
+  fcl::Transform3d X_other = fcl::Transform3d::Identity();
+  X_other.translation().z() = -half_height;
+  fcl::CollisionObjectd a(body), b(other, X_other);
+  const fcl::CollisionRequestd request(call == ManifoldCall::kOneContact ? 1 : 4, true);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    if (call == ManifoldCall::kManifold) {
+      benchmark::DoNotOptimize(contactManifold(*body, poses[i], *other, X_other));
+    } else {
+      a.setTransform(poses[i]);
+      fcl::CollisionResultd result;
+      benchmark::DoNotOptimize(fcl_superellipsoid::collide(&a, &b, request, result));
+    }
+    i = (i + 1) & 63;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
 void registerAll() {
   const std::vector<
       std::pair<std::string, std::function<std::unique_ptr<Method>(const BenchShape&)>>>
@@ -208,6 +266,18 @@ void registerAll() {
       benchmark::RegisterBenchmark((std::string("Derivatives/") + name + "/" + shape_class).c_str(),
                                    [shape_class, what = what](benchmark::State& state) {
                                      runDerivatives(state, shape_class, what);
+                                   });
+    }
+  }
+  for (const auto& [name, partner] : {std::pair{"halfspace", ManifoldPartner::kHalfspace},
+                                      std::pair{"superellipsoid", ManifoldPartner::kSuperellipsoid},
+                                      std::pair{"box", ManifoldPartner::kBox}}) {
+    for (const auto& [prefix, call] : {std::pair{"OneContact/", ManifoldCall::kOneContact},
+                                       std::pair{"FourContacts/", ManifoldCall::kFourContacts},
+                                       std::pair{"Manifold/", ManifoldCall::kManifold}}) {
+      benchmark::RegisterBenchmark((std::string(prefix) + name).c_str(),
+                                   [partner = partner, call = call](benchmark::State& state) {
+                                     runManifold(state, partner, call);
                                    });
     }
   }

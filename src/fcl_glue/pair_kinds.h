@@ -2,8 +2,9 @@
 #define FCL_SUPERELLIPSOID_SRC_FCL_GLUE_PAIR_KINDS_H
 
 // Internal: every kind of geometry the superellipsoid is paired with, one row each: the other
-// geometry's node type, FCL's class of it, the check of its parameters and the narrowphase
-// function that answers the pair (src/narrowphase/). The dispatcher (pairs.cpp) and FCL's
+// geometry's node type, FCL's class of it, the check of its parameters, the narrowphase
+// function that answers the pair (src/narrowphase/) and the other geometry's body for the
+// contact region (narrowphase/region_bodies.h). The dispatcher (pairs.cpp) and FCL's
 // tables (fcl_tables.h, and through them the front end, the broadphase callbacks and the
 // interposed plain calls) read this table and nothing else, so adding a pair kind is one row
 // here and one file in src/narrowphase/ (docs/design.md → "Adding a pair").
@@ -22,6 +23,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -30,6 +32,7 @@
 #include "narrowphase/capsule_pair.h"
 #include "narrowphase/halfspace_pair.h"
 #include "narrowphase/polytope_pair.h"
+#include "narrowphase/region_bodies.h"
 #include "narrowphase/round_pair.h"
 #include "narrowphase/smooth_pair.h"
 #include "narrowphase/sphere_pair.h"
@@ -46,12 +49,18 @@ enum class PairForm { kShape, kMesh };
 template <typename S>
 using ShapeAnswer = std::optional<PairHit<S>> (*)(const Pair<S>& pair, const char* where);
 
+/// The other geometry as a body of the contact region (narrowphase/region_bodies.h), given
+/// the pair's hit; nullptr where the other geometry is not of the row's class.
+template <typename S>
+using RegionMaker = std::unique_ptr<RegionBody<S>> (*)(const Pair<S>& pair, const PairHit<S>& hit);
+
 /// One pair kind.
 template <typename S>
 struct PairKind {
   fcl::NODE_TYPE node_type;
   PairForm form;
   ShapeAnswer<S> answer;  // kShape only
+  RegionMaker<S> region;  // nullptr: no contact region yet (one contact per pair)
 };
 
 // --- The checks of the other geometry's parameters ----------------------------------------
@@ -140,43 +149,62 @@ std::optional<PairHit<S>> shapeAnswer(const Pair<S>& pair, const char* where) {
   return Hit(pair, *other);
 }
 
+/// The other geometry, of FCL's class G, as a region body.
+template <typename S, typename G>
+std::unique_ptr<RegionBody<S>> shapeRegion(const Pair<S>& pair, const PairHit<S>&) {
+  const G* other = geometryAs<G>(pair.other);
+  return other != nullptr ? regionBody(*other, *pair.X_WO) : nullptr;
+}
+/// A halfspace or plane: the side the hit pushes the shape to (region_bodies.h).
+template <typename S>
+std::unique_ptr<RegionBody<S>> flatRegion(const Pair<S>&, const PairHit<S>& hit) {
+  return flatRegionBody(hit);
+}
+
 // --- The table ------------------------------------------------------------------------------
 
 template <typename S>
 inline constexpr PairKind<S> kPairKinds[] = {
     // Newton on the sphere of directions (smooth_pair.h).
     {fcl::BV_UNKNOWN, PairForm::kShape,
-     &shapeAnswer<S, Superellipsoid<S>, &checkNothing<S>, &superellipsoidHit<S>>},
+     &shapeAnswer<S, Superellipsoid<S>, &checkNothing<S>, &superellipsoidHit<S>>,
+     &shapeRegion<S, Superellipsoid<S>>},
     {fcl::GEOM_ELLIPSOID, PairForm::kShape,
-     &shapeAnswer<S, fcl::Ellipsoid<S>, &checkEllipsoid<S>, &ellipsoidHit<S>>},
+     &shapeAnswer<S, fcl::Ellipsoid<S>, &checkEllipsoid<S>, &ellipsoidHit<S>>,
+     &shapeRegion<S, fcl::Ellipsoid<S>>},
     // The point solver (sphere_pair.h); one support point (halfspace_pair.h).
     {fcl::GEOM_SPHERE, PairForm::kShape,
-     &shapeAnswer<S, fcl::Sphere<S>, &checkSphere<S>, &sphereHit<S>>},
+     &shapeAnswer<S, fcl::Sphere<S>, &checkSphere<S>, &sphereHit<S>>,
+     &shapeRegion<S, fcl::Sphere<S>>},
     {fcl::GEOM_HALFSPACE, PairForm::kShape,
-     &shapeAnswer<S, fcl::Halfspace<S>, &checkPlane<S, fcl::Halfspace<S>>, &halfspaceHit<S>>},
+     &shapeAnswer<S, fcl::Halfspace<S>, &checkPlane<S, fcl::Halfspace<S>>, &halfspaceHit<S>>,
+     &flatRegion<S>},
     {fcl::GEOM_PLANE, PairForm::kShape,
-     &shapeAnswer<S, fcl::Plane<S>, &checkPlane<S, fcl::Plane<S>>, &planeHit<S>>},
+     &shapeAnswer<S, fcl::Plane<S>, &checkPlane<S, fcl::Plane<S>>, &planeHit<S>>, &flatRegion<S>},
     // Features (capsule_pair.h, polytope_pair.h, round_pair.h).
     {fcl::GEOM_CAPSULE, PairForm::kShape,
-     &shapeAnswer<S, fcl::Capsule<S>, &checkRound<S, fcl::Capsule<S>>, &capsuleHit<S>>},
-    {fcl::GEOM_BOX, PairForm::kShape, &shapeAnswer<S, fcl::Box<S>, &checkBox<S>, &boxHit<S>>},
+     &shapeAnswer<S, fcl::Capsule<S>, &checkRound<S, fcl::Capsule<S>>, &capsuleHit<S>>, nullptr},
+    {fcl::GEOM_BOX, PairForm::kShape, &shapeAnswer<S, fcl::Box<S>, &checkBox<S>, &boxHit<S>>,
+     &shapeRegion<S, fcl::Box<S>>},
     {fcl::GEOM_CONVEX, PairForm::kShape,
-     &shapeAnswer<S, fcl::Convex<S>, &checkConvex<S>, &convexHit<S>>},
+     &shapeAnswer<S, fcl::Convex<S>, &checkConvex<S>, &convexHit<S>>,
+     &shapeRegion<S, fcl::Convex<S>>},
     {fcl::GEOM_TRIANGLE, PairForm::kShape,
-     &shapeAnswer<S, fcl::TriangleP<S>, &checkTriangle<S>, &triangleHit<S>>},
+     &shapeAnswer<S, fcl::TriangleP<S>, &checkTriangle<S>, &triangleHit<S>>,
+     &shapeRegion<S, fcl::TriangleP<S>>},
     {fcl::GEOM_CYLINDER, PairForm::kShape,
-     &shapeAnswer<S, fcl::Cylinder<S>, &checkRound<S, fcl::Cylinder<S>>, &cylinderHit<S>>},
+     &shapeAnswer<S, fcl::Cylinder<S>, &checkRound<S, fcl::Cylinder<S>>, &cylinderHit<S>>, nullptr},
     {fcl::GEOM_CONE, PairForm::kShape,
-     &shapeAnswer<S, fcl::Cone<S>, &checkRound<S, fcl::Cone<S>>, &coneHit<S>>},
+     &shapeAnswer<S, fcl::Cone<S>, &checkRound<S, fcl::Cone<S>>, &coneHit<S>>, nullptr},
     // FCL's BVH models of the eight BV types: their vertices (mesh_pair.h).
-    {fcl::BV_AABB, PairForm::kMesh, nullptr},
-    {fcl::BV_OBB, PairForm::kMesh, nullptr},
-    {fcl::BV_RSS, PairForm::kMesh, nullptr},
-    {fcl::BV_kIOS, PairForm::kMesh, nullptr},
-    {fcl::BV_OBBRSS, PairForm::kMesh, nullptr},
-    {fcl::BV_KDOP16, PairForm::kMesh, nullptr},
-    {fcl::BV_KDOP18, PairForm::kMesh, nullptr},
-    {fcl::BV_KDOP24, PairForm::kMesh, nullptr},
+    {fcl::BV_AABB, PairForm::kMesh, nullptr, nullptr},
+    {fcl::BV_OBB, PairForm::kMesh, nullptr, nullptr},
+    {fcl::BV_RSS, PairForm::kMesh, nullptr, nullptr},
+    {fcl::BV_kIOS, PairForm::kMesh, nullptr, nullptr},
+    {fcl::BV_OBBRSS, PairForm::kMesh, nullptr, nullptr},
+    {fcl::BV_KDOP16, PairForm::kMesh, nullptr, nullptr},
+    {fcl::BV_KDOP18, PairForm::kMesh, nullptr, nullptr},
+    {fcl::BV_KDOP24, PairForm::kMesh, nullptr, nullptr},
 };
 
 /// The row of node type t, or nullptr where the superellipsoid has no pair with it.

@@ -5,10 +5,12 @@
 
 #include "fcl_glue/pairs.h"
 
+#include <algorithm>
 #include <iostream>
 #include <limits>
 
 #include "common/coordinate_range.h"
+#include "fcl_glue/contact_manifold.h"
 #include "fcl_glue/mesh_pair.h"
 #include "fcl_glue/pair.h"
 #include "fcl_glue/pair_kinds.h"
@@ -71,10 +73,24 @@ std::size_t pairCollide(const fcl::CollisionGeometry<S>* o1, const fcl::Transfor
     if (kind->form == PairForm::kMesh) {
       if (meshCollide(pair, request, room, result)) return result.numContacts();
     } else if (const std::optional<PairHit<S>> hit = kind->answer(pair, "superellipsoid collide")) {
-      // One contact where they overlap, halfway between the two surfaces.
-      if (hit->distance < S(0)) {
+      if (hit->distance >= S(0)) return result.numContacts();
+      if (room == 1 || kind->region == nullptr) {
+        // One contact, halfway between the two surfaces.
         addContact(pair, *hit, Vector3<S>(S(0.5) * (hit->on_shape + hit->on_other)),
                    request.enable_contact, result);
+        return result.numContacts();
+      }
+      // The manifold's places, at most four (contact_manifold.h), each with its own depth and
+      // the pair's normal; those on the region's rim touch (depth 0, within the tolerance).
+      // Only the places are written: the outline through its first eight directions will do
+      // (not refined).
+      ManifoldOptions<S> options;
+      options.outline_area_tolerance = S(1);
+      options.max_points = static_cast<int>(std::min<std::size_t>(room, 4));
+      for (const ManifoldPoint<S>& p : pairManifold(pair, *kind, *hit, options).points) {
+        const PairHit<S> at{std::min(-p.depth, S(0)), p.on_other, p.on_shape, hit->normal,
+                            hit->other_primitive};
+        addContact(pair, at, p.position, request.enable_contact, result);
       }
       return result.numContacts();
     }

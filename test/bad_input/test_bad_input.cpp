@@ -18,6 +18,7 @@
 #include <type_traits>
 
 #include "fcl_superellipsoid/batch_distance.h"
+#include "fcl_superellipsoid/contact_manifold.h"
 #include "fcl_superellipsoid/fcl_integration.h"
 #include "fcl_superellipsoid/point_derivatives.h"
 #include "fcl_superellipsoid/point_distance.h"
@@ -172,6 +173,43 @@ TYPED_TEST(BadInputTest, PointDistance) {
     expectRefused([&] { pointDistance(shape, pose, Vector3<S>::Ones(), ok); }, "pointDistance",
                   "its translation at most", "(");
   }
+}
+
+TYPED_TEST(BadInputTest, ContactManifold) {
+  using S = TypeParam;
+  const S nan = TestFixture::nan;
+  const Superellipsoid<S> shape(1, 1, 1, S(0.5), S(0.5));
+  const fcl::Sphere<S> sphere(S(0.5));
+  const fcl::Transform3<S> X = fcl::Transform3<S>::Identity();
+  fcl::Transform3<S> bad = X;
+  bad.translation() = Vector3<S>(nan, 0, 0);
+  const std::string where = "contactManifold";
+  expectRefused([&] { contactManifold(shape, bad, sphere, X); }, where,
+                "the pose X_WS must be finite", "(nan, 0, 0)");
+  expectRefused([&] { contactManifold(shape, X, sphere, bad); }, where,
+                "the pose X_WO must be finite", "(nan, 0, 0)");
+  const auto with = [&](auto change) {
+    ManifoldOptions<S> options;
+    change(options);
+    return [=, &shape, &sphere] { contactManifold(shape, X, sphere, X, options); };
+  };
+  expectRefused(with([&](ManifoldOptions<S>& o) { o.patch_tolerance = nan; }), where,
+                "options.patch_tolerance must be finite and > 0", "nan");
+  expectRefused(with([](ManifoldOptions<S>& o) { o.patch_tolerance = 0; }), where,
+                "options.patch_tolerance", "0");
+  expectRefused(with([](ManifoldOptions<S>& o) { o.outline_samples = 2; }), where,
+                "options.outline_samples must be in [3, 4096]", "2");
+  expectRefused(with([](ManifoldOptions<S>& o) { o.outline_area_tolerance = 0; }), where,
+                "options.outline_area_tolerance must be finite and > 0", "0");
+  expectRefused(with([](ManifoldOptions<S>& o) { o.max_points = 0; }), where,
+                "options.max_points must be >= 1", "0");
+  const fcl::Capsule<S> capsule(S(0.2), S(0.5));
+  expectRefused([&] { contactManifold(shape, X, capsule, X); }, where,
+                "the other geometry must be a Superellipsoid", "GEOM_CAPSULE");
+  // The other shape's parameters, as for every pair query.
+  const fcl::Sphere<S> bad_sphere(nan);
+  expectRefused([&] { contactManifold(shape, X, bad_sphere, X); }, where,
+                "the other shape's radius must be finite", "nan");
 }
 
 TYPED_TEST(BadInputTest, PointDerivatives) {

@@ -821,7 +821,8 @@ TEST(ShapePairs, FloatAgreesWithDouble) {
 }
 
 // The broadphase callbacks: a scene of superellipsoids, boxes, capsules and a ground halfspace;
-// the manager's contacts are the pairwise collide()'s, and its distance the pairwise minimum.
+// the manager's contacts are the pairwise collide()'s with the same request (several contacts
+// per pair: their manifolds), and its distance the pairwise minimum.
 TEST(ShapePairs, BroadphaseFindsEveryPair) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> position(-2, 2);
@@ -856,8 +857,7 @@ TEST(ShapePairs, BroadphaseFindsEveryPair) {
                           dynamic_cast<const Superellipsoidd*>(geometries[j].get());
       if (!shapes) continue;  // FCL's own pairs: counted by FCL, not by us
       fcl::CollisionResultd r;
-      expected += fcl_superellipsoid::collide(objects[i].get(), objects[j].get(),
-                                              fcl::CollisionRequestd(1, true), r);
+      expected += fcl_superellipsoid::collide(objects[i].get(), objects[j].get(), cdata.request, r);
     }
   }
   std::size_t found = 0;

@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <random>
@@ -239,9 +240,15 @@ TEST(Interpose, FclsOwnBroadphaseCallbacksSeeTheShape) {
   collision.request.num_max_contacts = 10;
   collision.request.enable_contact = true;
   manager.collide(&collision, fcl::DefaultCollisionFunction<double>);
-  ASSERT_EQ(collision.result.numContacts(), 1u);
-  // The box's bottom face at z = 0.4 against the flat top at z = 0.5: depth 0.1.
-  EXPECT_NEAR(collision.result.getContact(0).penetration_depth, 0.1, 1e-12);
+  // The box's bottom face at z = 0.4 against the flat top at z = 0.5: depth 0.1 (less a few
+  // micrometres at the corners, where the top has begun to curve), held at its four corners.
+  ASSERT_EQ(collision.result.numContacts(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    const fcl::Contactd& c = collision.result.getContact(i);
+    EXPECT_NEAR(c.penetration_depth, 0.1, 1e-5);
+    EXPECT_NEAR(std::abs(c.pos.x()), 0.2, 1e-12);
+    EXPECT_NEAR(std::abs(c.pos.y()), 0.2, 1e-12);
+  }
 
   fcl::DistanceRequestd request(true);
   request.enable_signed_distance = true;

@@ -1,0 +1,78 @@
+#ifndef FCL_SUPERELLIPSOID_CONTACT_MANIFOLD_H
+#define FCL_SUPERELLIPSOID_CONTACT_MANIFOLD_H
+
+/// @file
+/// The contact region of a superellipsoid and another geometry: what a rigid-body simulator
+/// needs to hold a body at rest on a face (docs/usage.md → "Contact manifolds"; the geometry:
+/// docs/math.md → "Contact regions").
+///
+/// The pair's normal n is the one its distance query finds (from the superellipsoid towards the
+/// other geometry). Of each geometry, the region takes the points that reach within the patch
+/// tolerance of the other's supporting plane at n: for a pair that overlaps by δ, the cap of
+/// thickness δ + tolerance of each. Both caps are projected on the contact plane (through the
+/// middle of the pair's witness points, normal n) and intersected: the region, a convex polygon.
+/// Its vertices carry the depth at that place, the overlap of the two geometries along n there
+/// (negative where they are apart, by at most the tolerance). The reduced contact points keep
+/// the deepest place and span the region's area.
+///
+/// Answered for the other geometry being a Superellipsoid, fcl::Sphere, Ellipsoid, Box, Convex,
+/// TriangleP, Halfspace and Plane. For fcl::Capsule, Cylinder, Cone and BVH models the call
+/// refuses (std::invalid_argument naming the node type): their regions are not built yet.
+
+#include <fcl/geometry/collision_geometry.h>
+
+#include <vector>
+
+#include "fcl_superellipsoid/superellipsoid.h"
+
+namespace fcl_superellipsoid {
+
+template <typename S>
+struct ManifoldOptions {
+  /// How far beyond the other's supporting plane a point still belongs to the region, in the
+  /// world's length unit; < 0: 1e-3 × the superellipsoid's size (its largest radius).
+  S patch_tolerance = S(-1);
+  /// Each cap's outline is the polygon through its extreme points in `outline_samples` evenly
+  /// spread directions (≥ 3), refined where an edge misses the outline: at most about
+  /// `outline_area_tolerance` (> 0) of the cap's area is left out; ≥ 1: not refined (the
+  /// cheapest outline, for those who want the reduced points only). Exact where the outline
+  /// is a polygon (a polytope's face).
+  int outline_samples = 8;
+  S outline_area_tolerance = S(0.005);
+  /// The most reduced contact points (≥ 1).
+  int max_points = 4;
+};
+
+/// One place of the region: the points of the two surfaces there, the middle between them on
+/// the contact plane, and the depth (overlap along the normal; < 0: apart by that much).
+template <typename S>
+struct ManifoldPoint {
+  Vector3<S> position;  ///< on the contact plane, world
+  Vector3<S> on_shape;  ///< the superellipsoid's surface above `position` along n
+  Vector3<S> on_other;  ///< the other's surface below `position`
+  S depth;
+};
+
+template <typename S>
+struct ContactManifold {
+  Vector3<S> normal;  ///< unit, world, from the superellipsoid towards the other geometry
+  S distance;         ///< the pair's signed distance (< 0: overlapping by −distance)
+  S patch_tolerance;  ///< the tolerance used
+  /// The region's outline, counter-clockwise about `normal`, on the contact plane. One point
+  /// where the region is a point (the two caps meet in less than the tolerance).
+  std::vector<ManifoldPoint<S>> polygon;
+  /// At most max_points places: the deepest, then those that span the most area.
+  std::vector<ManifoldPoint<S>> points;
+};
+
+/// The contact region of the superellipsoid `shape` at X_WS and `other` at X_WO. Refuses a
+/// geometry it has no region for, a pose or option that is not valid, naming the value.
+template <typename S>
+ContactManifold<S> contactManifold(const Superellipsoid<S>& shape, const fcl::Transform3<S>& X_WS,
+                                   const fcl::CollisionGeometry<S>& other,
+                                   const fcl::Transform3<S>& X_WO,
+                                   const ManifoldOptions<S>& options = {});
+
+}  // namespace fcl_superellipsoid
+
+#endif  // FCL_SUPERELLIPSOID_CONTACT_MANIFOLD_H

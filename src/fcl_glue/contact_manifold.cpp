@@ -1,0 +1,96 @@
+// The public contact manifold (contact_manifold.h): the pair's row of pair_kinds.h answers the
+// hit and gives the other geometry's region body; narrowphase/contact_region.h builds the
+// region.
+
+#include "fcl_glue/contact_manifold.h"
+
+#include <cmath>
+#include <string>
+
+#include "common/coordinate_range.h"
+#include "common/invalid_argument.h"
+#include "narrowphase/contact_region.h"
+
+namespace fcl_superellipsoid {
+namespace detail {
+namespace {
+
+template <typename S>
+void checkOptions(const char* where, const ManifoldOptions<S>& options) {
+  if (!(std::isfinite(options.patch_tolerance) && options.patch_tolerance != S(0))) {
+    throwInvalidArgument(where, "options.patch_tolerance must be finite and > 0 (< 0: the default)",
+                         options.patch_tolerance);
+  }
+  if (!(options.outline_samples >= 3 && options.outline_samples <= 4096)) {
+    throwInvalidArgument(where, "options.outline_samples must be in [3, 4096]",
+                         options.outline_samples);
+  }
+  if (!(options.outline_area_tolerance > S(0) && std::isfinite(options.outline_area_tolerance))) {
+    throwInvalidArgument(where, "options.outline_area_tolerance must be finite and > 0",
+                         options.outline_area_tolerance);
+  }
+  if (!(options.max_points >= 1)) {
+    throwInvalidArgument(where, "options.max_points must be >= 1", options.max_points);
+  }
+}
+
+/// FCL's name of a node type, for the refusal.
+std::string nodeTypeName(fcl::NODE_TYPE t) {
+  static const char* const kNames[] = {
+      "BV_UNKNOWN",  "BV_AABB",        "BV_OBB",         "BV_RSS",        "BV_kIOS",
+      "BV_OBBRSS",   "BV_KDOP16",      "BV_KDOP18",      "BV_KDOP24",     "GEOM_BOX",
+      "GEOM_SPHERE", "GEOM_ELLIPSOID", "GEOM_CAPSULE",   "GEOM_CONE",     "GEOM_CYLINDER",
+      "GEOM_CONVEX", "GEOM_PLANE",     "GEOM_HALFSPACE", "GEOM_TRIANGLE", "GEOM_OCTREE"};
+  const int i = static_cast<int>(t);
+  return i >= 0 && i < int(sizeof(kNames) / sizeof(kNames[0])) ? kNames[i] : std::to_string(i);
+}
+
+}  // namespace
+
+template <typename S>
+ContactManifold<S> pairManifold(const Pair<S>& pair, const PairKind<S>& kind, const PairHit<S>& hit,
+                                const ManifoldOptions<S>& options) {
+  const S tolerance =
+      options.patch_tolerance > S(0) ? options.patch_tolerance : S(1e-3) * pair.shape->size();
+  const std::unique_ptr<RegionBody<S>> shape = regionBody(*pair.shape, *pair.X_WS);
+  const std::unique_ptr<RegionBody<S>> other = kind.region(pair, hit);
+  return contactRegion(*shape, *other, hit, Matrix3<S>(pair.X_WS->linear()), tolerance,
+                       pair.shape->size(), options);
+}
+
+}  // namespace detail
+
+template <typename S>
+ContactManifold<S> contactManifold(const Superellipsoid<S>& shape, const fcl::Transform3<S>& X_WS,
+                                   const fcl::CollisionGeometry<S>& other,
+                                   const fcl::Transform3<S>& X_WO,
+                                   const ManifoldOptions<S>& options) {
+  constexpr const char* kWhere = "contactManifold";
+  detail::checkPose(kWhere, "X_WS", X_WS);
+  detail::checkPose(kWhere, "X_WO", X_WO);
+  detail::checkOptions(kWhere, options);
+  const detail::Pair<S> pair = detail::makePair<S>(&shape, X_WS, &other, X_WO);
+  const detail::PairKind<S>* kind = detail::findPairKind<S>(pair.other_type);
+  std::optional<detail::PairHit<S>> hit;
+  if (kind != nullptr && kind->region != nullptr) hit = kind->answer(pair, kWhere);
+  if (!hit) {
+    detail::throwInvalidArgument(
+        kWhere,
+        "the other geometry must be a Superellipsoid, fcl::Sphere, Ellipsoid, Box, Convex, "
+        "TriangleP, Halfspace or Plane (its node type)",
+        detail::nodeTypeName(other.getNodeType()));
+  }
+  return detail::pairManifold(pair, *kind, *hit, options);
+}
+
+#define FSE_INSTANTIATE_CONTACT_MANIFOLD(S)                                                  \
+  template ContactManifold<S> contactManifold(                                               \
+      const Superellipsoid<S>&, const fcl::Transform3<S>&, const fcl::CollisionGeometry<S>&, \
+      const fcl::Transform3<S>&, const ManifoldOptions<S>&);                                 \
+  template ContactManifold<S> detail::pairManifold(                                          \
+      const detail::Pair<S>&, const detail::PairKind<S>&, const detail::PairHit<S>&,         \
+      const ManifoldOptions<S>&);
+FSE_INSTANTIATE_CONTACT_MANIFOLD(float)
+FSE_INSTANTIATE_CONTACT_MANIFOLD(double)
+
+}  // namespace fcl_superellipsoid

@@ -1,0 +1,405 @@
+#include "narrowphase/contact_region.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace fcl_superellipsoid {
+namespace detail {
+namespace {
+
+template <typename S>
+using Vector2 = Eigen::Matrix<S, 2, 1>;
+
+/// The contact plane: through `origin`, normal n, with n = e1 × e2.
+template <typename S>
+struct ContactPlane {
+  Vector3<S> origin, n, e1, e2;
+  /// e1 along `reference` (not parallel to n) projected on the plane.
+  ContactPlane(const Vector3<S>& o, const Vector3<S>& normal, const Vector3<S>& reference)
+      : origin(o), n(normal) {
+    e1 = (reference - reference.dot(n) * n).normalized();
+    e2 = n.cross(e1);
+  }
+  Vector2<S> coordinates(const Vector3<S>& x) const {
+    const Vector3<S> r = x - origin;
+    return Vector2<S>(r.dot(e1), r.dot(e2));
+  }
+  Vector3<S> at(const Vector2<S>& y) const { return origin + y.x() * e1 + y.y() * e2; }
+};
+
+/// A place with its plane coordinates.
+template <typename S>
+struct Place {
+  ManifoldPoint<S> point;
+  Vector2<S> y;
+};
+
+template <typename S>
+S cross2(const Vector2<S>& a, const Vector2<S>& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+/// A vertex of an outline: its plane coordinates and, where known exactly, the body's surface
+/// point above it (the farthest along the cap's direction on that line).
+template <typename S>
+struct OutlinePoint {
+  Vector2<S> y;
+  Vector3<S> on;
+  bool exact;
+};
+
+/// The extreme point along the lateral unit u of the cap {x in body : x·m ≥ c}, where the
+/// body's support along m is beyond c. By duality it is the support point along
+/// d(θ) = cos θ·u + sin θ·m for the least θ in [0, π/2] whose support point is at or beyond
+/// the cap's base, found by regula falsi (Illinois) on θ to the last bit (the region must not
+/// depend on the iterates' path: it turns with the pair); where the support point jumps there
+/// (a polytope's edge or face), the answer is on the segment between the bracket's two support
+/// points, at the base's height. `exact` tells whether the point is the body's farthest along m
+/// on its line along m: so where it is on the base (θ > 0: the tilted support plane touches the
+/// cap there alone), not where the support along u is already beyond the base (the line may
+/// run along a side face).
+///
+/// A smooth body (RegionBody::gauge) is solved by Newton's method on the optimality conditions
+/// instead: on the base x = x0 + a·u + b·w (w = m × u), G(x) = 1 and ∇G(x)·w = 0 (the gradient
+/// in the plane of u and m), with ∇G·u > 0. It starts from `warm` if given (a neighbouring
+/// direction's answer), else (or where that fails) from where the ray from `deepest` (the
+/// body's point farthest along m), taken to the base, along u leaves the body. Where neither
+/// converges (near a crease of an exponent > 1 the extreme point is a corner of the outline, and
+/// the gradient turns at once), the search on θ decides.
+template <typename S>
+Vector3<S> capExtreme(const RegionBody<S>& body, const Vector3<S>& u, const Vector3<S>& m, S c,
+                      bool& exact, const Vector3<S>* warm, const Vector3<S>& deepest) {
+  Vector3<S> p_lo = body.support(u);
+  S g_lo = p_lo.dot(m) - c;
+  exact = g_lo < S(0);
+  if (!exact) return p_lo;
+  const S size = body.size();
+  const S eps = std::numeric_limits<S>::epsilon();
+  S value;
+  Vector3<S> gradient;
+  Matrix3<S> hessian;
+  const Vector3<S> w = m.cross(u);
+  const auto newton = [&](Vector3<S> x) -> std::optional<Vector3<S>> {
+    x -= (x.dot(m) - c) * m;
+    for (int it = 0; it < 12 && body.gauge(x, value, gradient, hessian); ++it) {
+      const Vector3<S> hw = hessian * w;
+      const S j11 = gradient.dot(u), j12 = gradient.dot(w), j21 = hw.dot(u), j22 = hw.dot(w);
+      const S f1 = value - S(1), f2 = gradient.dot(w);
+      const S det = j11 * j22 - j12 * j21;
+      if (!(std::abs(det) > S(0)) || !(j11 > S(0))) break;
+      const S da = -(j22 * f1 - j12 * f2) / det, db = -(j11 * f2 - j21 * f1) / det;
+      if (!(std::abs(da) + std::abs(db) <= S(0.5) * size)) break;  // far off: not this one
+      x += da * u + db * w;
+      if (std::abs(da) + std::abs(db) <= S(256) * eps * size) {
+        // Converged; where the gradient still leaves the plane of u and m, x is near a crease
+        // and the steps only shrank.
+        if (std::abs(f2) <= S(1e4) * eps * gradient.norm()) return x;
+        break;
+      }
+    }
+    return std::nullopt;
+  };
+  if (warm != nullptr) {
+    if (const std::optional<Vector3<S>> x = newton(*warm)) return *x;
+  }
+  if (body.gauge(deepest, value, gradient, hessian)) {
+    // The ray's exit: Newton on G(o + r·u) = 1 from beyond the body, where G is convex along
+    // the ray and the iterates fall to its exit. o, the deepest point taken back along m to
+    // the base, is inside (m is the body's normal there).
+    const Vector3<S> o = deepest - (deepest.dot(m) - c) * m;
+    S r = S(2) * size;
+    for (int it = 0; it < 60 && body.gauge(Vector3<S>(o + r * u), value, gradient, hessian); ++it) {
+      const S slope = gradient.dot(u);
+      if (!(slope > S(0))) break;
+      const S step = (value - S(1)) / slope;
+      r -= step;
+      if (std::abs(step) <= S(64) * eps * size) {
+        if (r > S(0)) {
+          if (const std::optional<Vector3<S>> x = newton(Vector3<S>(o + r * u))) return *x;
+        }
+        break;
+      }
+    }
+  }
+  S lo = S(0), hi = S(M_PI / 2);
+  Vector3<S> p_hi = body.support(m);
+  S g_hi = p_hi.dot(m) - c;
+  S f_lo = g_lo, f_hi = g_hi;  // the values regula falsi interpolates (halved when stuck)
+  int side = 0;
+  for (int it = 0; it < 100; ++it) {
+    S t = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+    if (!(t > lo && t < hi)) t = S(0.5) * (lo + hi);
+    if (!(t > lo && t < hi)) break;  // the bracket is down to adjacent numbers
+    const Vector3<S> p = body.support(Vector3<S>(std::cos(t) * u + std::sin(t) * m));
+    const S g = p.dot(m) - c;
+    if (g == S(0)) return p;
+    if (g < S(0)) {
+      lo = t, p_lo = p, g_lo = g, f_lo = g;
+      if (side == -1) f_hi *= S(0.5);
+      side = -1;
+    } else {
+      hi = t, p_hi = p, g_hi = g, f_hi = g;
+      if (side == 1) f_lo *= S(0.5);
+      side = 1;
+    }
+    if ((p_hi - p_lo).squaredNorm() == S(0)) return p_hi;
+  }
+  const S rise = g_hi - g_lo;
+  return rise > S(0) ? Vector3<S>(p_lo + (-g_lo / rise) * (p_hi - p_lo)) : p_hi;
+}
+
+/// The cap's outline on the plane, counter-clockwise: its extreme points in `samples`
+/// directions, then, edge by edge, the extreme point along the edge's outward normal inserted
+/// wherever it lies farther than η beyond the edge. The area an edge misses is about 2/3 of
+/// its length times its gap, so η = 1.5·area_tolerance·A/P (A, P: the first polygon's area and
+/// perimeter) keeps the missed area within area_tolerance of the whole. Points closer than
+/// `merge` to their predecessor are merged.
+template <typename S>
+std::vector<OutlinePoint<S>> capOutline(const RegionBody<S>& body, const ContactPlane<S>& plane,
+                                        const Vector3<S>& m, S c, const Vector3<S>& deepest,
+                                        const ManifoldOptions<S>& options, S merge) {
+  std::vector<OutlinePoint<S>> outline;
+  // Every point found is in the cap, so none may lie farther along a direction than that
+  // direction's extreme: a warm-started answer that does is a wrong root, and the direction is
+  // solved again from its start (and if that fails too, the farthest point known stands in).
+  const auto farthestKnown = [&](const Vector2<S>& dir, const OutlinePoint<S>& o) {
+    const OutlinePoint<S>* best = &o;
+    for (const OutlinePoint<S>& q : outline) {
+      if (dir.dot(q.y - best->y) > merge) best = &q;
+    }
+    return best;
+  };
+  const auto extreme = [&](const Vector2<S>& dir, const Vector3<S>* warm) {
+    const Vector3<S> u = dir.x() * plane.e1 + dir.y() * plane.e2;
+    OutlinePoint<S> o;
+    o.on = capExtreme(body, u, m, c, o.exact, warm, deepest);
+    o.y = plane.coordinates(o.on);
+    if (warm != nullptr && farthestKnown(dir, o) != &o) {
+      o.on = capExtreme<S>(body, u, m, c, o.exact, nullptr, deepest);
+      o.y = plane.coordinates(o.on);
+    }
+    const OutlinePoint<S>* best = farthestKnown(dir, o);
+    return best == &o ? o : *best;
+  };
+  const int samples = options.outline_samples;
+  for (int k = 0; k < samples; ++k) {
+    const S phi = S(2 * M_PI) * S(k) / S(samples);
+    const OutlinePoint<S> o =
+        extreme(Vector2<S>(std::cos(phi), std::sin(phi)),
+                outline.empty() || !outline.back().exact ? nullptr : &outline.back().on);
+    if (outline.empty() || (o.y - outline.back().y).norm() > merge) outline.push_back(o);
+  }
+  while (outline.size() > 1 && (outline.front().y - outline.back().y).norm() <= merge) {
+    outline.pop_back();
+  }
+  if (outline.size() < 3 || options.outline_area_tolerance >= S(1)) return outline;
+  S area = S(0), perimeter = S(0);
+  for (std::size_t i = 0; i < outline.size(); ++i) {
+    const Vector2<S>& a = outline[i].y;
+    const Vector2<S>& b = outline[(i + 1) % outline.size()].y;
+    area += S(0.5) * cross2(a, b);
+    perimeter += (b - a).norm();
+  }
+  const S gap_allowed = std::max(
+      {S(1.5) * options.outline_area_tolerance * area / perimeter, merge, S(1e-6) * perimeter});
+  const std::size_t most = std::size_t(16) * std::size_t(samples);
+  // Edges shorter than √ε × the size are rounding's (their direction is noise) and miss no
+  // area worth a sample.
+  const S shortest = std::max(merge, std::sqrt(std::numeric_limits<S>::epsilon()) * perimeter);
+  for (std::size_t k = 0; k < outline.size() && outline.size() < most;) {
+    const Vector2<S> edge = outline[(k + 1) % outline.size()].y - outline[k].y;
+    const S length = edge.norm();
+    if (length <= shortest) {
+      ++k;
+      continue;
+    }
+    const Vector2<S> outward(edge.y() / length, -edge.x() / length);
+    const OutlinePoint<S>& next = outline[(k + 1) % outline.size()];
+    const Vector3<S> middle = S(0.5) * (outline[k].on + next.on);
+    const OutlinePoint<S> o = extreme(outward, outline[k].exact && next.exact ? &middle : nullptr);
+    // The extreme along an edge's outward normal lies beyond the edge and between its ends
+    // (the outline is convex); a point elsewhere is rounding's, and the edge is kept.
+    const S along = edge.dot(o.y - outline[k].y) / length;
+    if (outward.dot(o.y - outline[k].y) > gap_allowed && along > -merge && along < length + merge) {
+      outline.insert(outline.begin() + std::ptrdiff_t(k + 1), o);
+    } else {
+      ++k;
+    }
+  }
+  return outline;
+}
+
+/// The convex polygon `subject` clipped by the convex polygon `clip` (both counter-clockwise;
+/// Sutherland–Hodgman).
+/// (The subject's vertices keep their surface points; the new ones have none.)
+template <typename S>
+std::vector<OutlinePoint<S>> clipConvex(std::vector<OutlinePoint<S>> subject,
+                                        const std::vector<OutlinePoint<S>>& clip) {
+  if (clip.size() < 3) return subject;  // a point or a segment clips nothing (the cap is thin)
+  for (std::size_t i = 0; i < clip.size() && !subject.empty(); ++i) {
+    const Vector2<S>& a = clip[i].y;
+    const Vector2<S> edge = clip[(i + 1) % clip.size()].y - a;
+    std::vector<OutlinePoint<S>> kept;
+    kept.reserve(subject.size() + 1);
+    for (std::size_t j = 0; j < subject.size(); ++j) {
+      const OutlinePoint<S>& p = subject[j];
+      const OutlinePoint<S>& q = subject[(j + 1) % subject.size()];
+      const S sp = cross2(edge, Vector2<S>(p.y - a)), sq = cross2(edge, Vector2<S>(q.y - a));
+      if (sp >= S(0)) kept.push_back(p);
+      if ((sp >= S(0)) != (sq >= S(0))) {
+        kept.push_back(
+            {Vector2<S>(p.y + (sp / (sp - sq)) * (q.y - p.y)), Vector3<S>::Zero(), false});
+      }
+    }
+    subject = std::move(kept);
+  }
+  return subject;
+}
+
+/// The area of the convex hull of the points (monotone chain).
+template <typename S>
+S hullArea(std::vector<Vector2<S>> pts) {
+  if (pts.size() < 3) return S(0);
+  std::sort(pts.begin(), pts.end(), [](const Vector2<S>& a, const Vector2<S>& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  std::vector<Vector2<S>> hull(2 * pts.size());
+  std::size_t k = 0;
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::size_t start = k;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const Vector2<S>& p = pass == 0 ? pts[i] : pts[pts.size() - 1 - i];
+      while (k >= start + 2 &&
+             cross2(Vector2<S>(hull[k - 1] - hull[k - 2]), Vector2<S>(p - hull[k - 2])) <= S(0)) {
+        --k;
+      }
+      hull[k++] = p;
+    }
+    --k;  // the last point starts the other chain
+  }
+  S area = S(0);
+  for (std::size_t i = 0; i < k; ++i) area += cross2(hull[i], hull[(i + 1) % k]);
+  return S(0.5) * area;
+}
+
+/// At most `max_points` of the candidates: the deepest (of those within `tie` of the deepest
+/// depth, the first: the outline's vertices come before the hit's place, so that a flat
+/// contact is held at its corners), then the farthest
+/// from it, then each time the one that adds the most area to their hull; fewer where the rest
+/// add no more than `merge` (length) or merge² (area).
+template <typename S>
+std::vector<ManifoldPoint<S>> reduce(const std::vector<Place<S>>& candidates, int max_points, S tie,
+                                     S merge) {
+  std::vector<ManifoldPoint<S>> out;
+  if (candidates.empty()) return out;
+  S deepest = -std::numeric_limits<S>::infinity();
+  for (const Place<S>& c : candidates) deepest = std::max(deepest, c.point.depth);
+  std::size_t first = 0;
+  while (candidates[first].point.depth < deepest - tie) ++first;
+  std::vector<std::size_t> chosen{first};
+  std::vector<Vector2<S>> hull{candidates[first].y};
+  while (static_cast<int>(chosen.size()) < max_points) {
+    std::size_t best = candidates.size();
+    S best_gain = chosen.size() == 1 ? merge : merge * merge;
+    const S base = hullArea(hull);
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      if (std::find(chosen.begin(), chosen.end(), i) != chosen.end()) continue;
+      S gain;
+      if (chosen.size() == 1) {
+        gain = (candidates[i].y - hull[0]).norm();
+      } else {
+        hull.push_back(candidates[i].y);
+        gain = hullArea(hull) - base;
+        hull.pop_back();
+      }
+      // A later candidate must gain clearly more: ties go to the earlier one, whatever the
+      // rounding (the order of the candidates turns with the pair).
+      if (gain > best_gain * (S(1) + S(1e-6))) best = i, best_gain = gain;
+    }
+    if (best == candidates.size()) break;
+    chosen.push_back(best);
+    hull.push_back(candidates[best].y);
+  }
+  for (std::size_t i : chosen) out.push_back(candidates[i].point);
+  return out;
+}
+
+}  // namespace
+
+template <typename S>
+ContactManifold<S> contactRegion(const RegionBody<S>& a, const RegionBody<S>& b,
+                                 const PairHit<S>& hit, const Matrix3<S>& R_WS, S tolerance, S size,
+                                 const ManifoldOptions<S>& options) {
+  ContactManifold<S> out;
+  out.normal = hit.normal.normalized();
+  out.distance = hit.distance;
+  out.patch_tolerance = tolerance;
+  const S thickness = tolerance - hit.distance;
+  if (!(thickness > S(0))) return out;  // apart by more than the tolerance: no region
+
+  const Vector3<S>& n = out.normal;
+  // The outline's first direction comes from the shape's frame, so that the region turns with
+  // the pair: its x axis, or its y axis where x is within 25° of the normal.
+  const Vector3<S> reference = std::abs(R_WS.col(0).dot(n)) < S(0.9) ? R_WS.col(0) : R_WS.col(1);
+  const ContactPlane<S> plane(S(0.5) * (hit.on_shape + hit.on_other), n, reference);
+  const S merge = S(64) * std::numeric_limits<S>::epsilon() * size;
+
+  // Each cap: the body beyond the other's supporting plane less the tolerance.
+  std::vector<OutlinePoint<S>> region =
+      capOutline(a, plane, n, S(hit.on_shape.dot(n) - thickness), hit.on_shape, options, merge);
+  if (!b.unbounded()) {
+    const Vector3<S> m = -n;
+    region = clipConvex(region, capOutline(b, plane, m, S(hit.on_other.dot(m) - thickness),
+                                           hit.on_other, options, merge));
+  }
+
+  // The depth at each vertex, along n: the shape's surface point is known where the vertex is
+  // one of its outline's, else measured; a vertex whose line misses a body by rounding (it is
+  // on a cap's rim) is measured a little towards the region's centroid.
+  Vector2<S> centroid = Vector2<S>::Zero();
+  for (const OutlinePoint<S>& o : region) centroid += o.y;
+  if (!region.empty()) centroid /= S(region.size());
+  std::vector<Place<S>> places;
+  for (const OutlinePoint<S>& o : region) {
+    for (S pull : {S(0), S(1e-6), S(1e-3)}) {
+      const Vector2<S> y = o.y + pull * (centroid - o.y);
+      const Vector3<S> at = plane.at(y);
+      const std::optional<S> up =
+          o.exact && pull == S(0) ? std::optional<S>((o.on - at).dot(n)) : a.extent(at, n);
+      const std::optional<S> down = b.extent(at, Vector3<S>(-n));
+      if (!up || !down) continue;
+      ManifoldPoint<S> p;
+      p.on_shape = at + *up * n;
+      p.on_other = at - *down * n;
+      p.position = S(0.5) * (p.on_shape + p.on_other);
+      p.depth = *up + *down;
+      if (!places.empty() && (y - places.back().y).norm() <= merge) break;
+      places.push_back({p, y});
+      out.polygon.push_back(p);
+      break;
+    }
+  }
+
+  // The deepest place, the hit's, is a candidate after the vertices.
+  ManifoldPoint<S> deepest;
+  deepest.on_shape = hit.on_shape;
+  deepest.on_other = hit.on_other;
+  deepest.position = plane.origin;
+  deepest.depth = -hit.distance;
+  if (out.polygon.empty()) out.polygon.push_back(deepest);
+  places.push_back({deepest, Vector2<S>::Zero()});
+  out.points = reduce(places, options.max_points, tolerance, merge);
+  return out;
+}
+
+#define FSE_INSTANTIATE_CONTACT_REGION(S)                                               \
+  template ContactManifold<S> contactRegion(const RegionBody<S>&, const RegionBody<S>&, \
+                                            const PairHit<S>&, const Matrix3<S>&, S, S, \
+                                            const ManifoldOptions<S>&);
+FSE_INSTANTIATE_CONTACT_REGION(float)
+FSE_INSTANTIATE_CONTACT_REGION(double)
+
+}  // namespace detail
+}  // namespace fcl_superellipsoid

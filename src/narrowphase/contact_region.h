@@ -1,0 +1,59 @@
+#ifndef FCL_SUPERELLIPSOID_SRC_NARROWPHASE_CONTACT_REGION_H
+#define FCL_SUPERELLIPSOID_SRC_NARROWPHASE_CONTACT_REGION_H
+
+// Internal: the contact region of a pair from its hit (docs/math.md → "Contact regions").
+// Each geometry is seen through a RegionBody (region_bodies.h): its support point and its
+// extent along a line. Given the pair's normal n and signed distance d, each body's cap, the
+// part beyond the other's supporting plane less the patch tolerance (thickness tolerance − d),
+// is outlined on the contact plane by its extreme points in `outline_samples` directions; the
+// two outlines are intersected (both convex, counter-clockwise), the depth is measured at each
+// vertex along n, and the places are reduced.
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "fcl_superellipsoid/contact_manifold.h"
+#include "narrowphase/shape_pair.h"
+
+namespace fcl_superellipsoid {
+namespace detail {
+
+template <typename S>
+using Matrix3 = Eigen::Matrix<S, 3, 3>;
+
+/// A posed convex geometry as the region sees it. World coordinates.
+template <typename S>
+class RegionBody {
+ public:
+  virtual ~RegionBody() = default;
+  /// A point of the body farthest along v ≠ 0. Unbounded bodies are not asked.
+  virtual Vector3<S> support(const Vector3<S>& v) const = 0;
+  /// A smooth body's gauge at the world point x (1 on its surface, 1-homogeneous about its
+  /// centre) with its gradient and Hessian; false for the others (the cap's outline is then
+  /// found from support points alone).
+  virtual bool gauge(const Vector3<S>& /*x*/, S& /*value*/, Vector3<S>& /*gradient*/,
+                     Matrix3<S>& /*hessian*/) const {
+    return false;
+  }
+  /// The scale of the body (its largest radius; for a polytope, its largest coordinate).
+  virtual S size() const = 0;
+  /// max{s : y + s·m in the body} for the unit m, or std::nullopt where the line misses it.
+  virtual std::optional<S> extent(const Vector3<S>& y, const Vector3<S>& m) const = 0;
+  /// A halfspace (a plane acts as the one the shape is pushed out of): its cap is the whole
+  /// contact plane.
+  virtual bool unbounded() const { return false; }
+};
+
+/// The region of the pair whose hit is `hit`, A being the superellipsoid's body (R_WS its
+/// orientation, which fixes where the outlines' samples start) and B the other's. `tolerance`
+/// > 0, `size` the shape's, options checked.
+template <typename S>
+ContactManifold<S> contactRegion(const RegionBody<S>& a, const RegionBody<S>& b,
+                                 const PairHit<S>& hit, const Matrix3<S>& R_WS, S tolerance, S size,
+                                 const ManifoldOptions<S>& options);
+
+}  // namespace detail
+}  // namespace fcl_superellipsoid
+
+#endif  // FCL_SUPERELLIPSOID_SRC_NARROWPHASE_CONTACT_REGION_H

@@ -1,0 +1,324 @@
+#include "narrowphase/region_bodies.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "shape/nested_norm.h"
+#include "shape/octant.h"
+
+namespace fcl_superellipsoid {
+namespace detail {
+namespace {
+
+template <typename S>
+constexpr S kEps = std::numeric_limits<S>::epsilon();
+
+/// A body posed by X: lines and directions taken into its frame.
+template <typename S>
+class PosedBody : public RegionBody<S> {
+ public:
+  explicit PosedBody(const fcl::Transform3<S>& X) : X_(X) {}
+
+ protected:
+  Vector3<S> toLocal(const Vector3<S>& y) const {
+    return X_.linear().transpose() * (y - X_.translation());
+  }
+  Vector3<S> directionToLocal(const Vector3<S>& v) const { return X_.linear().transpose() * v; }
+  Vector3<S> toWorld(const Vector3<S>& p) const { return X_ * p; }
+  fcl::Transform3<S> X_;
+};
+
+template <typename S>
+class SuperellipsoidBody final : public PosedBody<S> {
+ public:
+  SuperellipsoidBody(const Superellipsoid<S>& shape, const fcl::Transform3<S>& X)
+      : PosedBody<S>(X),
+        shape_(shape),
+        norm_(NestedNorm<S>::gauge(shape)),
+        bound_(shape.radii().norm() * S(1.001)) {}
+  Vector3<S> support(const Vector3<S>& v) const override {
+    return this->toWorld(shape_.supportPoint(this->directionToLocal(v)));
+  }
+  bool gauge(const Vector3<S>& x, S& value, Vector3<S>& gradient,
+             Matrix3<S>& hessian) const override {
+    const Vector3<S> q = this->toLocal(x);
+    const NestedNormEval<S> e = norm_.evaluate(q.cwiseAbs(), true);
+    Matrix3<S> h = e.hessian;
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        if ((q[i] < S(0)) != (q[j] < S(0))) h(i, j) = -h(i, j);
+      }
+    }
+    const Matrix3<S>& R = this->X_.linear();
+    value = e.value;
+    gradient = R * intoOctantOf(q, e.gradient);
+    hessian = R * h * R.transpose();
+    return true;
+  }
+  S size() const override { return shape_.size(); }
+  /// Newton on G(p + s·m) = 1 from s beyond the bounding sphere: G is convex along the line,
+  /// so from the right of its largest root the iterates fall to it without overshooting; a
+  /// slope ≤ 0 there means the line's lowest G is above 1 (it misses).
+  std::optional<S> extent(const Vector3<S>& y, const Vector3<S>& m) const override {
+    const Vector3<S> p = this->toLocal(y), mm = this->directionToLocal(m);
+    S s = -p.dot(mm) + bound_;
+    for (int it = 0; it < 200; ++it) {
+      const Vector3<S> q = p + s * mm;
+      const S g = shape_.gauge(q) - S(1);
+      if (g <= S(4) * kEps<S>) return s;
+      const S slope = shape_.gaugeGradient(q).dot(mm);
+      if (!(slope > S(0))) return std::nullopt;
+      const S step = g / slope;
+      s -= step;
+      if (step <= S(4) * kEps<S> * bound_) return s;
+    }
+    return s;
+  }
+
+ private:
+  const Superellipsoid<S>& shape_;
+  NestedNorm<S> norm_;
+  S bound_;
+};
+
+/// An ellipsoid (a sphere: equal radii). A zero radius is taken as a tiny one.
+template <typename S>
+class EllipsoidBody final : public PosedBody<S> {
+ public:
+  EllipsoidBody(const Vector3<S>& radii, const fcl::Transform3<S>& X)
+      : PosedBody<S>(X), radii_(radii.cwiseMax(Vector3<S>::Constant(kEps<S> * radii.maxCoeff()))) {}
+  Vector3<S> support(const Vector3<S>& v) const override {
+    const Vector3<S> dw = radii_.cwiseProduct(this->directionToLocal(v));
+    return this->toWorld(Vector3<S>(radii_.cwiseProduct(dw) / dw.norm()));
+  }
+  /// G = ‖D⁻¹q‖, ∇G = D⁻²q/G, ∇²G = (D⁻² − ∇G·∇Gᵀ)/G in the ellipsoid's frame.
+  bool gauge(const Vector3<S>& x, S& value, Vector3<S>& gradient,
+             Matrix3<S>& hessian) const override {
+    const Vector3<S> q = this->toLocal(x);
+    const Vector3<S> inv2 = radii_.cwiseProduct(radii_).cwiseInverse();
+    value = q.cwiseQuotient(radii_).norm();
+    if (!(value > S(0))) return false;
+    const Vector3<S> g = inv2.cwiseProduct(q) / value;
+    const Matrix3<S> h = (Matrix3<S>(inv2.asDiagonal()) - g * g.transpose()) / value;
+    const Matrix3<S>& R = this->X_.linear();
+    gradient = R * g;
+    hessian = R * h * R.transpose();
+    return true;
+  }
+  S size() const override { return radii_.maxCoeff(); }
+  std::optional<S> extent(const Vector3<S>& y, const Vector3<S>& m) const override {
+    const Vector3<S> p = this->toLocal(y).cwiseQuotient(radii_);
+    const Vector3<S> mm = this->directionToLocal(m).cwiseQuotient(radii_);
+    const S a = mm.squaredNorm(), b = p.dot(mm), c = p.squaredNorm() - S(1);
+    const S disc = b * b - a * c;
+    if (disc < S(0)) return std::nullopt;
+    return (-b + std::sqrt(disc)) / a;
+  }
+
+ private:
+  Vector3<S> radii_;
+};
+
+/// A convex polytope: its vertices, and its faces' planes n·x ≤ offset (all in its frame).
+template <typename S>
+class PolytopeBody final : public PosedBody<S> {
+ public:
+  struct Face {
+    Vector3<S> n;
+    S offset;
+  };
+  PolytopeBody(std::vector<Vector3<S>> vertices, std::vector<Face> faces,
+               const fcl::Transform3<S>& X)
+      : PosedBody<S>(X), vertices_(std::move(vertices)), faces_(std::move(faces)) {
+    S size = S(0);
+    for (const Vector3<S>& v : vertices_) size = std::max(size, v.cwiseAbs().maxCoeff());
+    size_ = size;
+    slack_ = S(1e3) * kEps<S> * std::max(size, S(1e-30));
+  }
+  S size() const override { return size_; }
+  Vector3<S> support(const Vector3<S>& v) const override {
+    const Vector3<S> w = this->directionToLocal(v);
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < vertices_.size(); ++i) {
+      if (vertices_[i].dot(w) > vertices_[best].dot(w)) best = i;
+    }
+    return this->toWorld(vertices_[best]);
+  }
+  /// The largest s with every face's n·(p + s·m) ≤ offset, if some s holds them all.
+  std::optional<S> extent(const Vector3<S>& y, const Vector3<S>& m) const override {
+    const Vector3<S> p = this->toLocal(y), mm = this->directionToLocal(m);
+    S lo = -std::numeric_limits<S>::infinity(), hi = std::numeric_limits<S>::infinity();
+    for (const Face& f : faces_) {
+      const S along = f.n.dot(mm), room = f.offset - f.n.dot(p);
+      // A face within a millionth of a radian of the line's direction (a side face the line
+      // runs along: the region's rim) bounds no s; the line must be inside it.
+      if (std::abs(along) <= S(1e-6)) {
+        if (room < -slack_) return std::nullopt;
+      } else if (along > S(0)) {
+        hi = std::min(hi, room / along);
+      } else {
+        lo = std::max(lo, room / along);
+      }
+    }
+    if (!(hi >= lo - slack_) || !std::isfinite(hi)) return std::nullopt;
+    return hi;
+  }
+
+ private:
+  std::vector<Vector3<S>> vertices_;
+  std::vector<Face> faces_;
+  S size_;
+  S slack_;
+};
+
+/// A triangle: its support among its corners; the extent where the line crosses its plane
+/// inside it.
+template <typename S>
+class TriangleBody final : public RegionBody<S> {
+ public:
+  TriangleBody(const Vector3<S>& a, const Vector3<S>& b, const Vector3<S>& c) : v_{a, b, c} {
+    normal_ = (b - a).cross(c - a);
+  }
+  S size() const override {
+    return std::max({(v_[1] - v_[0]).norm(), (v_[2] - v_[1]).norm(), (v_[0] - v_[2]).norm()});
+  }
+  Vector3<S> support(const Vector3<S>& v) const override {
+    const S d0 = v.dot(v_[0]), d1 = v.dot(v_[1]), d2 = v.dot(v_[2]);
+    return d0 >= d1 && d0 >= d2 ? v_[0] : (d1 >= d2 ? v_[1] : v_[2]);
+  }
+  std::optional<S> extent(const Vector3<S>& y, const Vector3<S>& m) const override {
+    const S along = normal_.dot(m);
+    if (std::abs(along) <= kEps<S> * normal_.norm()) return std::nullopt;  // edge-on
+    const S s = normal_.dot(v_[0] - y) / along;
+    const Vector3<S> q = y + s * m;
+    const S slack = -S(1e3) * kEps<S> * normal_.squaredNorm();
+    for (int i = 0; i < 3; ++i) {
+      const Vector3<S>& a = v_[i];
+      const Vector3<S>& b = v_[(i + 1) % 3];
+      if ((b - a).cross(q - a).dot(normal_) < slack) return std::nullopt;
+    }
+    return s;
+  }
+
+ private:
+  Vector3<S> v_[3];
+  Vector3<S> normal_;
+};
+
+/// The halfspace n·x ≤ offset (unit n, world).
+template <typename S>
+class FlatBody final : public RegionBody<S> {
+ public:
+  FlatBody(const Vector3<S>& n, S offset, const Vector3<S>& on) : n_(n), offset_(offset), on_(on) {}
+  Vector3<S> support(const Vector3<S>&) const override { return on_; }
+  S size() const override { return S(0); }
+  std::optional<S> extent(const Vector3<S>& y, const Vector3<S>& m) const override {
+    const S along = n_.dot(m);
+    if (!(along > kEps<S>)) return std::nullopt;
+    return (offset_ - n_.dot(y)) / along;
+  }
+  bool unbounded() const override { return true; }
+
+ private:
+  Vector3<S> n_;
+  S offset_;
+  Vector3<S> on_;
+};
+
+/// The faces of fcl::Convex's list (count, then that many vertex indices, per face) as planes
+/// facing away from the vertices' centroid (Newell's normal: any planar polygon).
+template <typename S>
+std::vector<typename PolytopeBody<S>::Face> convexFaces(const fcl::Convex<S>& convex) {
+  const std::vector<Vector3<S>>& v = convex.getVertices();
+  Vector3<S> centroid = Vector3<S>::Zero();
+  for (const Vector3<S>& x : v) centroid += x;
+  centroid /= S(std::max<std::size_t>(v.size(), 1));
+  const std::vector<int>& list = convex.getFaces();
+  std::vector<typename PolytopeBody<S>::Face> faces;
+  for (std::size_t i = 0; i < list.size();) {
+    const int count = list[i];
+    Vector3<S> n = Vector3<S>::Zero(), mid = Vector3<S>::Zero();
+    for (int k = 0; k < count; ++k) {
+      const Vector3<S>& a = v[list[i + 1 + k]];
+      const Vector3<S>& b = v[list[i + 1 + (k + 1) % count]];
+      n += Vector3<S>((a.y() - b.y()) * (a.z() + b.z()), (a.z() - b.z()) * (a.x() + b.x()),
+                      (a.x() - b.x()) * (a.y() + b.y()));
+      mid += a;
+    }
+    i += 1 + count;
+    if (count < 3 || !(n.norm() > S(0))) continue;
+    n.normalize();
+    mid /= S(count);
+    if (n.dot(mid - centroid) < S(0)) n = -n;
+    faces.push_back({n, n.dot(mid)});
+  }
+  return faces;
+}
+
+}  // namespace
+
+template <typename S>
+std::unique_ptr<RegionBody<S>> regionBody(const Superellipsoid<S>& shape,
+                                          const fcl::Transform3<S>& X) {
+  return std::make_unique<SuperellipsoidBody<S>>(shape, X);
+}
+template <typename S>
+std::unique_ptr<RegionBody<S>> regionBody(const fcl::Sphere<S>& sphere,
+                                          const fcl::Transform3<S>& X) {
+  return std::make_unique<EllipsoidBody<S>>(Vector3<S>::Constant(sphere.radius), X);
+}
+template <typename S>
+std::unique_ptr<RegionBody<S>> regionBody(const fcl::Ellipsoid<S>& ellipsoid,
+                                          const fcl::Transform3<S>& X) {
+  return std::make_unique<EllipsoidBody<S>>(ellipsoid.radii, X);
+}
+template <typename S>
+std::unique_ptr<RegionBody<S>> regionBody(const fcl::Box<S>& box, const fcl::Transform3<S>& X) {
+  const Vector3<S> h = S(0.5) * box.side;
+  std::vector<Vector3<S>> corners;
+  for (int k = 0; k < 8; ++k) {
+    corners.emplace_back(k & 1 ? h.x() : -h.x(), k & 2 ? h.y() : -h.y(), k & 4 ? h.z() : -h.z());
+  }
+  std::vector<typename PolytopeBody<S>::Face> faces;
+  for (int i = 0; i < 3; ++i) {
+    for (S sign : {S(1), S(-1)}) faces.push_back({sign * Vector3<S>::Unit(i), h[i]});
+  }
+  return std::make_unique<PolytopeBody<S>>(std::move(corners), std::move(faces), X);
+}
+template <typename S>
+std::unique_ptr<RegionBody<S>> regionBody(const fcl::Convex<S>& convex,
+                                          const fcl::Transform3<S>& X) {
+  return std::make_unique<PolytopeBody<S>>(convex.getVertices(), convexFaces(convex), X);
+}
+template <typename S>
+std::unique_ptr<RegionBody<S>> regionBody(const fcl::TriangleP<S>& triangle,
+                                          const fcl::Transform3<S>& X) {
+  return std::make_unique<TriangleBody<S>>(X * triangle.a, X * triangle.b, X * triangle.c);
+}
+template <typename S>
+std::unique_ptr<RegionBody<S>> flatRegionBody(const PairHit<S>& hit) {
+  const Vector3<S> n = -hit.normal.normalized();
+  return std::make_unique<FlatBody<S>>(n, n.dot(hit.on_other), hit.on_other);
+}
+
+#define FSE_INSTANTIATE_REGION_BODIES(S)                                         \
+  template std::unique_ptr<RegionBody<S>> regionBody(const Superellipsoid<S>&,   \
+                                                     const fcl::Transform3<S>&); \
+  template std::unique_ptr<RegionBody<S>> regionBody(const fcl::Sphere<S>&,      \
+                                                     const fcl::Transform3<S>&); \
+  template std::unique_ptr<RegionBody<S>> regionBody(const fcl::Ellipsoid<S>&,   \
+                                                     const fcl::Transform3<S>&); \
+  template std::unique_ptr<RegionBody<S>> regionBody(const fcl::Box<S>&,         \
+                                                     const fcl::Transform3<S>&); \
+  template std::unique_ptr<RegionBody<S>> regionBody(const fcl::Convex<S>&,      \
+                                                     const fcl::Transform3<S>&); \
+  template std::unique_ptr<RegionBody<S>> regionBody(const fcl::TriangleP<S>&,   \
+                                                     const fcl::Transform3<S>&); \
+  template std::unique_ptr<RegionBody<S>> flatRegionBody(const PairHit<S>&);
+FSE_INSTANTIATE_REGION_BODIES(float)
+FSE_INSTANTIATE_REGION_BODIES(double)
+
+}  // namespace detail
+}  // namespace fcl_superellipsoid

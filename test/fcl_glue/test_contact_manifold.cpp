@@ -1,0 +1,381 @@
+// The contact manifold (contact_manifold.h), against constructions: a superellipsoid pressed
+// into a halfspace along its axis has the cross-section at that depth as its region (its area
+// in closed form, docs/math.md → "Contact regions"); two flat faces pressed together have the
+// overlap of their cross-sections (its area by quadrature here); every vertex's points on the
+// two surfaces (the gauge in long double, the plane); the answer turns with the pair; FCL's
+// collide with several contacts gives the manifold's overlapping places in its conventions.
+
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/convex.h>
+#include <fcl/geometry/shape/ellipsoid.h>
+#include <fcl/geometry/shape/halfspace.h>
+#include <fcl/geometry/shape/plane.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/geometry/shape/triangle_p.h>
+#include <fcl/narrowphase/collision.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "fcl_superellipsoid/contact_manifold.h"
+#include "fcl_superellipsoid/fcl_integration.h"
+#include "test_helpers.h"
+
+namespace fcl_superellipsoid {
+namespace {
+
+using test::referenceGauge;
+
+template <typename S>
+fcl::Transform3<S> randomPose(std::mt19937& rng, double reach) {
+  std::normal_distribution<double> normal(0, 1);
+  Eigen::Quaterniond q(normal(rng), normal(rng), normal(rng), normal(rng));
+  q.normalize();
+  fcl::Transform3d X = fcl::Transform3d::Identity();
+  X.linear() = q.toRotationMatrix();
+  X.translation() = reach * Eigen::Vector3d(normal(rng), normal(rng), normal(rng));
+  return X.cast<S>();
+}
+
+/// The area of the polygon of places, seen along n (shoelace in a basis of the plane ⊥ n).
+template <typename S>
+double polygonArea(const std::vector<ManifoldPoint<S>>& places, const Vector3<S>& n) {
+  const Eigen::Vector3d nd = n.template cast<double>();
+  const Eigen::Vector3d e1 = nd.unitOrthogonal(), e2 = nd.cross(e1);
+  double area = 0;
+  for (std::size_t i = 0; i < places.size(); ++i) {
+    const Eigen::Vector3d p = places[i].position.template cast<double>();
+    const Eigen::Vector3d q = places[(i + 1) % places.size()].position.template cast<double>();
+    area += p.dot(e1) * q.dot(e2) - p.dot(e2) * q.dot(e1);
+  }
+  return 0.5 * area;
+}
+
+/// The area of |x/a|^(2/ε) + |y/b|^(2/ε) ≤ 1: 4ab·Γ(1 + ε/2)²/Γ(1 + ε).
+double superellipseArea(double a, double b, double eps) {
+  return 4 * a * b * std::tgamma(1 + eps / 2) * std::tgamma(1 + eps / 2) / std::tgamma(1 + eps);
+}
+
+/// The scale s of the cross-section at depth τ below the top z = a3 (radii a1·s, a2·s).
+double sectionScale(double a3, double eps2, double tau) {
+  const double c = 1 - std::pow((a3 - tau) / a3, 2 / eps2);
+  return std::pow(c, eps2 / 2);
+}
+
+/// The half-width in y of |x/a|^n + |y/b|^n ≤ 1 at x (0 outside).
+double halfWidth(double a, double b, double n, double x) {
+  const double r = std::abs(x / a);
+  return r >= 1 ? 0 : b * std::pow(1 - std::pow(r, n), 1 / n);
+}
+
+// --- A superellipsoid pressed into a halfspace along its axis ------------------------------
+
+template <typename S>
+class ManifoldOnPlane : public ::testing::Test {};
+TYPED_TEST_SUITE(ManifoldOnPlane, test::Scalars);
+
+TYPED_TEST(ManifoldOnPlane, RegionIsTheCrossSectionAtTheDepth) {
+  using S = TypeParam;
+  constexpr bool single = std::is_same<S, float>::value;
+  std::mt19937 rng(52);
+  const double a1 = 0.8, a2 = 0.5, a3 = 0.6;
+  const double area_bound = 0.01;
+  int cases = 0;
+  for (double e1 : {0.1, 0.4, 1.0, 1.6, 1.9}) {
+    for (double e2 : {0.1, 0.4, 1.0, 1.6, 1.9}) {
+      for (double depth : {1e-3, 2e-2, 0.2}) {
+        for (bool plane : {false, true}) {
+          const Superellipsoid<S> shape{S(a1), S(a2), S(a3), S(e1), S(e2)};
+          const fcl::Transform3<S> X = randomPose<S>(rng, 2.0);
+          // In the shape's frame, the halfspace z ≥ a3 − δ (n = −z), pressing on its top.
+          const S top = S(a3 - depth);
+          std::unique_ptr<fcl::CollisionGeometry<S>> other;
+          if (plane) {
+            other = std::make_unique<fcl::Plane<S>>(Vector3<S>(0, 0, -1), -top);
+          } else {
+            other = std::make_unique<fcl::Halfspace<S>>(Vector3<S>(0, 0, -1), -top);
+          }
+          const ContactManifold<S> m = contactManifold(shape, X, *other, X);
+          SCOPED_TRACE(::testing::Message() << "e1 " << e1 << " e2 " << e2 << " depth " << depth
+                                            << (plane ? " plane" : " halfspace"));
+          const double tol = m.patch_tolerance;
+          EXPECT_NEAR(tol, 1e-3 * 0.8, 1e-9);
+          const Eigen::Vector3d up = (X.linear() * Vector3<S>::UnitZ()).template cast<double>();
+          EXPECT_GT(m.normal.template cast<double>().dot(up), 1 - 1e-5);
+          EXPECT_NEAR(m.distance, -depth, 1e-4 * (single ? 10 : 1e-6));
+          // The cap of thickness δ + tolerance: its base's cross-section.
+          const double s = sectionScale(a3, e2, depth + tol);
+          const double expected = superellipseArea(a1 * s, a2 * s, e1);
+          const double area = polygonArea(m.polygon, m.normal);
+          EXPECT_NEAR(area / expected, 1.0, area_bound) << "area " << area << " of " << expected;
+          // Each vertex: on the shape's surface, its other point on the plane, its depth the
+          // height of the surface above the plane, within the tolerance of it.
+          const fcl::Transform3<double> Xd = X.template cast<double>();
+          for (const ManifoldPoint<S>& p : m.polygon) {
+            const Eigen::Vector3d on_shape = Xd.inverse() * p.on_shape.template cast<double>();
+            const Eigen::Vector3d on_other = Xd.inverse() * p.on_other.template cast<double>();
+            const double g = double(referenceGauge(shape, Vector3<S>(on_shape.cast<S>())));
+            EXPECT_NEAR(g, 1.0, single ? 1e-4 : 1e-9);
+            EXPECT_NEAR(on_other.z(), double(top), single ? 1e-5 : 1e-12);
+            EXPECT_NEAR(double(p.depth), on_shape.z() - double(top), single ? 1e-5 : 1e-12);
+            EXPECT_GE(p.depth, -tol * (1 + 1e-3) - (single ? 1e-6 : 0));
+            EXPECT_LE(p.depth, depth * (1 + 1e-6) + (single ? 1e-6 : 0));
+          }
+          // The reduced points: the deepest first, at most four, spanning the region.
+          ASSERT_FALSE(m.points.empty());
+          EXPECT_LE(m.points.size(), 4u);
+          EXPECT_NEAR(m.points[0].depth, depth, single ? 1e-5 : 1e-12);
+          if (m.polygon.size() >= 4 && area > 0) {
+            EXPECT_EQ(m.points.size(), 4u);
+          }
+          ++cases;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(cases, 150);
+}
+
+// --- Two flat faces pressed together ---------------------------------------------------------
+
+/// The area of the intersection of |x/a|^n + |y/b|^n ≤ 1 with the same shape of radii (c, d),
+/// exponent m, centred at (ox, oy), by the midpoint rule along x over exact intervals in y.
+double overlapArea(double a, double b, double n, double c, double d, double m, double ox,
+                   double oy) {
+  const double lo = std::max(-a, ox - c), hi = std::min(a, ox + c);
+  if (hi <= lo) return 0;
+  const int steps = 200000;
+  const double dx = (hi - lo) / steps;
+  double area = 0;
+  for (int i = 0; i < steps; ++i) {
+    const double x = lo + (i + 0.5) * dx;
+    const double w1 = halfWidth(a, b, n, x), w2 = halfWidth(c, d, m, x - ox);
+    area += std::max(0.0, std::min(w1, oy + w2) - std::max(-w1, oy - w2)) * dx;
+  }
+  return area;
+}
+
+TEST(ManifoldFaceToFace, TwoSuperellipsoidsOverlapOfTheirFaces) {
+  std::mt19937 rng(521);
+  const double depth = 0.01;
+  for (double e1a : {0.1, 1.0}) {
+    for (double e1b : {0.1, 0.6}) {
+      for (const Eigen::Vector2d& offset :
+           {Eigen::Vector2d(0.3, 0.1), Eigen::Vector2d(-0.2, 0.35), Eigen::Vector2d(0, 0)}) {
+        const Superellipsoid<double> a(0.6, 0.4, 0.3, e1a, 0.1), b(0.5, 0.45, 0.25, e1b, 0.1);
+        const fcl::Transform3d X = randomPose<double>(rng, 1.0);
+        fcl::Transform3d X_AB = fcl::Transform3d::Identity();
+        X_AB.translation() = Eigen::Vector3d(offset.x(), offset.y(), 0.3 + 0.25 - depth);
+        const ContactManifold<double> m = contactManifold(a, X, b, X * X_AB);
+        SCOPED_TRACE(::testing::Message()
+                     << "e1 " << e1a << ", " << e1b << " offset " << offset.transpose());
+        EXPECT_GT(m.normal.dot(X.linear().col(2)), 1 - 1e-6);
+        const double tau = -m.distance + m.patch_tolerance;
+        const double sa = sectionScale(0.3, 0.1, tau), sb = sectionScale(0.25, 0.1, tau);
+        const double expected = overlapArea(0.6 * sa, 0.4 * sa, 2 / e1a, 0.5 * sb, 0.45 * sb,
+                                            2 / e1b, offset.x(), offset.y());
+        EXPECT_NEAR(polygonArea(m.polygon, m.normal) / expected, 1.0, 0.01);
+        ASSERT_EQ(m.points.size(), 4u);
+      }
+    }
+  }
+}
+
+TEST(ManifoldFaceToFace, SuperellipsoidOnABoxFace) {
+  std::mt19937 rng(522);
+  const double depth = 0.02;
+  for (double e1 : {0.1, 1.0, 1.8}) {
+    for (const Eigen::Vector2d& offset :
+         {Eigen::Vector2d(0.35, 0.1), Eigen::Vector2d(-0.1, -0.3), Eigen::Vector2d(0, 0)}) {
+      const Superellipsoid<double> a(0.6, 0.4, 0.3, e1, 0.1);
+      const fcl::Box<double> box(0.8, 0.5, 0.4);
+      const fcl::Transform3d X = randomPose<double>(rng, 1.0);
+      fcl::Transform3d X_AB = fcl::Transform3d::Identity();
+      X_AB.translation() = Eigen::Vector3d(offset.x(), offset.y(), 0.3 + 0.2 - depth);
+      const ContactManifold<double> m = contactManifold(a, X, box, X * X_AB);
+      SCOPED_TRACE(::testing::Message() << "e1 " << e1 << " offset " << offset.transpose());
+      EXPECT_GT(m.normal.dot(X.linear().col(2)), 1 - 1e-6);
+      const double tau = -m.distance + m.patch_tolerance;
+      const double sa = sectionScale(0.3, 0.1, tau);
+      // The box's face as a superellipse of a huge exponent is its rectangle.
+      const double expected =
+          overlapArea(0.6 * sa, 0.4 * sa, 2 / e1, 0.4, 0.25, 4000, offset.x(), offset.y());
+      EXPECT_NEAR(polygonArea(m.polygon, m.normal) / expected, 1.0, 0.01);
+      // The box's face is flat: every vertex's other point is on it.
+      for (const ManifoldPoint<double>& p : m.polygon) {
+        EXPECT_NEAR((X * X_AB).inverse().operator*(p.on_other).z(), -0.2, 1e-12);
+      }
+    }
+  }
+}
+
+// --- The answer turns with the pair -----------------------------------------------------------
+
+TEST(ManifoldPose, SameRegionForThePairMovedAndTurned) {
+  std::mt19937 rng(523);
+  std::vector<Vector3<double>> cube;
+  for (int k = 0; k < 8; ++k) {
+    cube.emplace_back(k & 1 ? 0.3 : -0.3, k & 2 ? 0.2 : -0.2, k & 4 ? 0.25 : -0.25);
+  }
+  auto faces = std::make_shared<std::vector<int>>(std::vector<int>{
+      4, 0, 2, 6, 4, 4, 1, 5, 7, 3, 4, 0, 4, 5, 1, 4, 2, 3, 7, 6, 4, 0, 1, 3, 2, 4, 4, 6, 7, 5});
+  const auto vertices = std::make_shared<std::vector<Vector3<double>>>(cube);
+  const Superellipsoid<double> shape(0.5, 0.35, 0.3, 0.2, 0.3);
+  std::vector<std::unique_ptr<fcl::CollisionGeometry<double>>> others;
+  others.push_back(std::make_unique<Superellipsoid<double>>(0.4, 0.4, 0.2, 0.3, 0.2));
+  others.push_back(std::make_unique<fcl::Box<double>>(0.8, 0.6, 0.4));
+  others.push_back(std::make_unique<fcl::Sphere<double>>(0.3));
+  others.push_back(std::make_unique<fcl::Ellipsoid<double>>(0.5, 0.3, 0.2));
+  others.push_back(std::make_unique<fcl::Convex<double>>(vertices, 6, faces));
+  others.push_back(std::make_unique<fcl::TriangleP<double>>(
+      Vector3<double>(-0.6, -0.5, 0), Vector3<double>(0.7, -0.4, 0), Vector3<double>(0, 0.6, 0)));
+  others.push_back(std::make_unique<fcl::Halfspace<double>>(Vector3<double>(0, 0, 1), 0.0));
+  // The pair's normal is the narrowphase's: for overlapping pairs its direction is good to
+  // about 1e-8 (a depth good to 1e-12 fixes its direction only to about the square root of
+  // that). Where the two normals agree to the last bits, the regions must agree: depths to
+  // 1e-12 × size, areas to 1e-12, vertices to 4e-12 × size (where two outlines cross at a
+  // small angle, their crossing moves by the rounding over that angle's sine: the worst seen
+  // is 1.5e-12 × size). Elsewhere a cap's rim on a flattish face moves by much more than the
+  // turn (its height changes by the turn times the size, over a small slope), and the regions
+  // must agree in area and depth.
+  const double size = 0.5, normal_bound = 1e-8;
+  int exact_normals = 0;
+  int compared = 0;
+  for (const auto& other : others) {
+    for (int trial = 0; trial < 6; ++trial) {
+      const fcl::Transform3d X_WS = randomPose<double>(rng, 0.1);
+      // The other turned about the shape's z (not onto a symmetry of the pair: ties between
+      // equal candidates may go either way) and placed so that they overlap by 0.02.
+      fcl::Transform3d X_SO = fcl::Transform3d::Identity();
+      X_SO.linear() =
+          Eigen::AngleAxisd(0.3 * trial + 0.1, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+          Eigen::AngleAxisd(0.05 * trial + 0.01, Eigen::Vector3d::UnitX()).toRotationMatrix();
+      const fcl::Transform3d probe = X_WS * X_SO;
+      const ContactManifold<double> at_origin = contactManifold(shape, X_WS, *other, probe);
+      fcl::Transform3d X_WO = probe;
+      X_WO.translation() -= (at_origin.distance + 0.02) * at_origin.normal;
+      const ContactManifold<double> m = contactManifold(shape, X_WS, *other, X_WO);
+      const fcl::Transform3d T = randomPose<double>(rng, 3.0);
+      const ContactManifold<double> mt = contactManifold(shape, T * X_WS, *other, T * X_WO);
+      SCOPED_TRACE(::testing::Message() << "other " << other->getNodeType() << " trial " << trial);
+      ASSERT_GE(m.polygon.size(), 3u);
+      ASSERT_EQ(m.polygon.size(), mt.polygon.size());
+      ASSERT_EQ(m.points.size(), mt.points.size());
+      const double turn = (T.linear() * m.normal - mt.normal).norm();
+      EXPECT_LE(turn, normal_bound);
+      const bool exact = turn <= 1e-14;
+      exact_normals += exact;
+      const double bound = exact ? 1e-12 * size : 1e-6 * size;
+      EXPECT_NEAR(m.distance, mt.distance, bound);
+      for (std::size_t i = 0; i < m.polygon.size(); ++i) {
+        if (exact) {
+          EXPECT_LE((T * m.polygon[i].position - mt.polygon[i].position).norm(), 4 * bound) << i;
+        }
+        EXPECT_NEAR(m.polygon[i].depth, mt.polygon[i].depth, bound);
+      }
+      const double area = polygonArea(m.polygon, m.normal);
+      EXPECT_NEAR(polygonArea(mt.polygon, mt.normal), area, (exact ? 1e-12 : 1e-6) * area);
+      // The reduced places: as deep. (Where the deepest place is on a flat part, as on a
+      // box-like face, the narrowphase's witness may be anywhere on it: its position is not
+      // compared.)
+      for (std::size_t i = 0; i < m.points.size(); ++i) {
+        EXPECT_NEAR(m.points[i].depth, mt.points[i].depth, bound) << i;
+      }
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 42);
+  EXPECT_GE(exact_normals, 12);
+}
+
+// --- Through FCL's collide -------------------------------------------------------------------
+
+TEST(ManifoldThroughFcl, CollideWithSeveralContactsGivesTheOverlappingPlaces) {
+  const auto shape = std::make_shared<Superellipsoid<double>>(0.5, 0.4, 0.3, 0.1, 0.1);
+  const auto ground = std::make_shared<fcl::Halfspace<double>>(Vector3<double>(0, 0, 1), 0.0);
+  // A box-like body tilted a little about x, its lowest edge 0.01 into the ground.
+  fcl::Transform3d X = fcl::Transform3d::Identity();
+  X.linear() = Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  X.translation() = Eigen::Vector3d(0.2, -0.1, 0);
+  const double lowest =
+      (X * shape->supportPoint(-(X.linear().transpose() * Vector3<double>::UnitZ()))).z();
+  X.translation().z() += -lowest - 0.01;
+  fcl::CollisionObjectd body(shape, X), floor(ground, fcl::Transform3d::Identity());
+  for (bool shape_first : {true, false}) {
+    fcl::CollisionRequestd request(8, true);
+    fcl::CollisionResultd result;
+    if (shape_first) {
+      fcl::collide(&body, &floor, request, result);
+    } else {
+      fcl::collide(&floor, &body, request, result);
+    }
+    SCOPED_TRACE(shape_first ? "shape first" : "ground first");
+    // The deepest place first, then places on the rim of the region (the face's outline where
+    // it comes within the tolerance of the ground): four, touching (depth 0) or deeper.
+    ASSERT_EQ(result.numContacts(), 4u);
+    EXPECT_NEAR(result.getContact(0).penetration_depth, 0.01, 1e-12);
+    const double tolerance = 1e-3 * 0.5;
+    for (std::size_t i = 0; i < result.numContacts(); ++i) {
+      const fcl::Contactd& c = result.getContact(i);
+      // FCL's normal points from o1 to o2: from the body down into the ground, or up.
+      EXPECT_NEAR(c.normal.z(), shape_first ? -1.0 : 1.0, 1e-12);
+      EXPECT_GE(c.penetration_depth, 0.0);
+      // pos is halfway between the surfaces: within the tolerance of the ground, below it by
+      // half the depth where they overlap.
+      EXPECT_LE(c.pos.z(), 0.5 * tolerance + 1e-12);
+      EXPECT_GE(c.pos.z(), -0.5 * c.penetration_depth - 1e-12);
+      if (i > 0) {
+        EXPECT_EQ(c.penetration_depth, 0.0);
+        // On the body's surface where it is within the tolerance of the ground.
+        const Eigen::Vector3d on_shape(c.pos.x(), c.pos.y(), 2 * c.pos.z());
+        EXPECT_NEAR(shape->gauge(X.inverse() * on_shape), 1.0, 1e-9);
+      }
+    }
+    // The places spread across the face's part in the ground: more than a thin strip.
+    double span = 0;
+    for (std::size_t i = 1; i < result.numContacts(); ++i) {
+      span = std::max(span, (result.getContact(i).pos - result.getContact(0).pos).norm());
+    }
+    EXPECT_GT(span, 0.5);
+  }
+  // One contact requested: one, the deepest.
+  fcl::CollisionRequestd one(1, true);
+  fcl::CollisionResultd result;
+  fcl::collide(&body, &floor, one, result);
+  ASSERT_EQ(result.numContacts(), 1u);
+  EXPECT_NEAR(result.getContact(0).penetration_depth, 0.01, 1e-12);
+}
+
+// --- Refusals --------------------------------------------------------------------------------
+
+TEST(ManifoldRefusals, GeometriesWithoutARegionAndBadOptionsAreRefused) {
+  const Superellipsoid<double> shape(0.5, 0.4, 0.3, 0.5, 0.5);
+  const fcl::Transform3d X = fcl::Transform3d::Identity();
+  const fcl::Capsule<double> capsule(0.2, 0.5);
+  EXPECT_THROW(contactManifold(shape, X, capsule, X), std::invalid_argument);
+  const fcl::Sphere<double> sphere(0.2);
+  ManifoldOptions<double> options;
+  options.outline_samples = 2;
+  EXPECT_THROW(contactManifold(shape, X, sphere, X, options), std::invalid_argument);
+  options = {};
+  options.max_points = 0;
+  EXPECT_THROW(contactManifold(shape, X, sphere, X, options), std::invalid_argument);
+  options = {};
+  options.patch_tolerance = std::nan("");
+  EXPECT_THROW(contactManifold(shape, X, sphere, X, options), std::invalid_argument);
+  // Apart by more than the tolerance: no region.
+  fcl::Transform3d far = X;
+  far.translation().x() = 2;
+  const ContactManifold<double> m = contactManifold(shape, X, sphere, far);
+  EXPECT_TRUE(m.polygon.empty());
+  EXPECT_TRUE(m.points.empty());
+  EXPECT_NEAR(m.distance, 2 - 0.5 - 0.2, 1e-12);
+}
+
+}  // namespace
+}  // namespace fcl_superellipsoid
