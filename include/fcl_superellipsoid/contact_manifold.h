@@ -16,7 +16,7 @@
 /// the deepest place and span the region's area.
 ///
 /// Answered for the other geometry being a Superellipsoid, fcl::Sphere, Ellipsoid, Box, Convex,
-/// TriangleP, Halfspace and Plane. For fcl::Capsule, Cylinder, Cone and BVH models the call
+/// TriangleP, Capsule, Cylinder, Halfspace and Plane. For fcl::Cone and BVH models the call
 /// refuses (std::invalid_argument naming the node type): their regions are not built yet.
 
 #include <fcl/geometry/collision_geometry.h>

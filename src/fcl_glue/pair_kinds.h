@@ -183,7 +183,8 @@ inline constexpr PairKind<S> kPairKinds[] = {
      &shapeAnswer<S, fcl::Plane<S>, &checkPlane<S, fcl::Plane<S>>, &planeHit<S>>, &flatRegion<S>},
     // Features (capsule_pair.h, polytope_pair.h, round_pair.h).
     {fcl::GEOM_CAPSULE, PairForm::kShape,
-     &shapeAnswer<S, fcl::Capsule<S>, &checkRound<S, fcl::Capsule<S>>, &capsuleHit<S>>, nullptr},
+     &shapeAnswer<S, fcl::Capsule<S>, &checkRound<S, fcl::Capsule<S>>, &capsuleHit<S>>,
+     &shapeRegion<S, fcl::Capsule<S>>},
     {fcl::GEOM_BOX, PairForm::kShape, &shapeAnswer<S, fcl::Box<S>, &checkBox<S>, &boxHit<S>>,
      &shapeRegion<S, fcl::Box<S>>},
     {fcl::GEOM_CONVEX, PairForm::kShape,
@@ -193,7 +194,8 @@ inline constexpr PairKind<S> kPairKinds[] = {
      &shapeAnswer<S, fcl::TriangleP<S>, &checkTriangle<S>, &triangleHit<S>>,
      &shapeRegion<S, fcl::TriangleP<S>>},
     {fcl::GEOM_CYLINDER, PairForm::kShape,
-     &shapeAnswer<S, fcl::Cylinder<S>, &checkRound<S, fcl::Cylinder<S>>, &cylinderHit<S>>, nullptr},
+     &shapeAnswer<S, fcl::Cylinder<S>, &checkRound<S, fcl::Cylinder<S>>, &cylinderHit<S>>,
+     &shapeRegion<S, fcl::Cylinder<S>>},
     {fcl::GEOM_CONE, PairForm::kShape,
      &shapeAnswer<S, fcl::Cone<S>, &checkRound<S, fcl::Cone<S>>, &coneHit<S>>, nullptr},
     // FCL's BVH models of the eight BV types: their vertices (mesh_pair.h).

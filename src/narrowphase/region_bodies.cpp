@@ -207,6 +207,84 @@ class TriangleBody final : public RegionBody<S> {
   Vector3<S> normal_;
 };
 
+/// The s-interval [lo, hi] of the line p + s·m within the body; lo > hi: empty.
+template <typename S>
+struct Interval {
+  S lo, hi;
+  static Interval all() {
+    return {-std::numeric_limits<S>::infinity(), std::numeric_limits<S>::infinity()};
+  }
+  static Interval none() { return {S(1), S(0)}; }
+  Interval meet(const Interval& o) const { return {std::max(lo, o.lo), std::min(hi, o.hi)}; }
+  bool empty() const { return !(lo <= hi); }
+};
+
+/// Where |q + s·m| ≤ r for the vectors' components `axes` (2: within r of the z axis; 3: of the
+/// origin).
+template <typename S>
+Interval<S> withinRadius(const Vector3<S>& q, const Vector3<S>& m, S r, int axes) {
+  const S a = m.head(axes).squaredNorm(), b = q.head(axes).dot(m.head(axes));
+  const S c = q.head(axes).squaredNorm() - r * r;
+  // A line within a millionth of a radian of the axis (one along a cylinder's side: the
+  // region's rim) is within r everywhere or nowhere; rounding's share of r² counts as within.
+  if (a <= S(1e-12)) {
+    return c <= S(1e3) * kEps<S> * r * r ? Interval<S>::all() : Interval<S>::none();
+  }
+  const S disc = b * b - a * c;
+  if (disc < S(0)) return Interval<S>::none();
+  const S root = std::sqrt(disc);
+  return {(-b - root) / a, (-b + root) / a};
+}
+
+/// Where |q_z + s·m_z| ≤ h.
+template <typename S>
+Interval<S> withinSlab(S qz, S mz, S h) {
+  if (std::abs(mz) <= kEps<S>) return std::abs(qz) <= h ? Interval<S>::all() : Interval<S>::none();
+  const S t1 = (-h - qz) / mz, t2 = (h - qz) / mz;
+  return {std::min(t1, t2), std::max(t1, t2)};
+}
+
+/// A cylinder (radius r, half-height h about its z axis) or a capsule (its segment of
+/// half-length h, swept by the ball of radius r).
+template <typename S>
+class RoundBody final : public PosedBody<S> {
+ public:
+  RoundBody(S r, S h, bool capsule, const fcl::Transform3<S>& X)
+      : PosedBody<S>(X), r_(r), h_(h), capsule_(capsule) {}
+  /// Where the direction is within rounding of a tie (square to the axis: the side's segment
+  /// supports it; along the axis: a cylinder's disc), the tie goes the same way whatever the
+  /// rounding: to the +z end, to the disc's centre.
+  Vector3<S> support(const Vector3<S>& v) const override {
+    const Vector3<S> w = this->directionToLocal(v);
+    const S tie = S(64) * kEps<S> * w.norm();
+    const S end = w.z() >= -tie ? h_ : -h_;
+    if (capsule_) return this->toWorld(Vector3<S>(Vector3<S>(0, 0, end) + r_ * w.normalized()));
+    const S side = std::hypot(w.x(), w.y());
+    const Vector3<S> rim = side > tie ? Vector3<S>(r_ * w.x() / side, r_ * w.y() / side, end)
+                                      : Vector3<S>(0, 0, end);
+    return this->toWorld(rim);
+  }
+  /// The largest s of the line in the body: for a cylinder, within r of the axis and within
+  /// the slab; for a capsule, the largest of that and of the two end balls'.
+  std::optional<S> extent(const Vector3<S>& y, const Vector3<S>& m) const override {
+    const Vector3<S> q = this->toLocal(y), mm = this->directionToLocal(m);
+    Interval<S> best = withinRadius(q, mm, r_, 2).meet(withinSlab(q.z(), mm.z(), h_));
+    if (capsule_) {
+      for (S end : {-h_, h_}) {
+        const Interval<S> ball = withinRadius(Vector3<S>(q - Vector3<S>(0, 0, end)), mm, r_, 3);
+        if (!ball.empty() && (best.empty() || ball.hi > best.hi)) best = ball;
+      }
+    }
+    if (best.empty() || !std::isfinite(best.hi)) return std::nullopt;
+    return best.hi;
+  }
+  S size() const override { return std::max(r_, h_ + (capsule_ ? r_ : S(0))); }
+
+ private:
+  S r_, h_;
+  bool capsule_;
+};
+
 /// The halfspace n·x ≤ offset (unit n, world).
 template <typename S>
 class FlatBody final : public RegionBody<S> {
@@ -298,6 +376,16 @@ std::unique_ptr<RegionBody<S>> regionBody(const fcl::TriangleP<S>& triangle,
   return std::make_unique<TriangleBody<S>>(X * triangle.a, X * triangle.b, X * triangle.c);
 }
 template <typename S>
+std::unique_ptr<RegionBody<S>> regionBody(const fcl::Capsule<S>& capsule,
+                                          const fcl::Transform3<S>& X) {
+  return std::make_unique<RoundBody<S>>(capsule.radius, S(0.5) * capsule.lz, true, X);
+}
+template <typename S>
+std::unique_ptr<RegionBody<S>> regionBody(const fcl::Cylinder<S>& cylinder,
+                                          const fcl::Transform3<S>& X) {
+  return std::make_unique<RoundBody<S>>(cylinder.radius, S(0.5) * cylinder.lz, false, X);
+}
+template <typename S>
 std::unique_ptr<RegionBody<S>> flatRegionBody(const PairHit<S>& hit) {
   const Vector3<S> n = -hit.normal.normalized();
   return std::make_unique<FlatBody<S>>(n, n.dot(hit.on_other), hit.on_other);
@@ -315,6 +403,10 @@ std::unique_ptr<RegionBody<S>> flatRegionBody(const PairHit<S>& hit) {
   template std::unique_ptr<RegionBody<S>> regionBody(const fcl::Convex<S>&,      \
                                                      const fcl::Transform3<S>&); \
   template std::unique_ptr<RegionBody<S>> regionBody(const fcl::TriangleP<S>&,   \
+                                                     const fcl::Transform3<S>&); \
+  template std::unique_ptr<RegionBody<S>> regionBody(const fcl::Capsule<S>&,     \
+                                                     const fcl::Transform3<S>&); \
+  template std::unique_ptr<RegionBody<S>> regionBody(const fcl::Cylinder<S>&,    \
                                                      const fcl::Transform3<S>&); \
   template std::unique_ptr<RegionBody<S>> flatRegionBody(const PairHit<S>&);
 FSE_INSTANTIATE_REGION_BODIES(float)

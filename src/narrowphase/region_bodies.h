@@ -7,11 +7,15 @@
 //                    from outside (the gauge is convex there, so the iterates only fall)
 //   sphere, ellipsoid  closed forms
 //   box, convex, triangle  the best vertex; the extent over the faces' planes
+//   capsule, cylinder  closed forms (within the radius of the axis, within the slab of its
+//                    length; a capsule's end balls)
 //   halfspace, plane  the halfspace the hit's normal leaves (a plane's side the shape is
 //                    pushed to): its boundary through the hit's point on it
 
 #include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/convex.h>
+#include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/ellipsoid.h>
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/geometry/shape/triangle_p.h>
@@ -39,6 +43,12 @@ std::unique_ptr<RegionBody<S>> regionBody(const fcl::Convex<S>& convex,
                                           const fcl::Transform3<S>& X);
 template <typename S>
 std::unique_ptr<RegionBody<S>> regionBody(const fcl::TriangleP<S>& triangle,
+                                          const fcl::Transform3<S>& X);
+template <typename S>
+std::unique_ptr<RegionBody<S>> regionBody(const fcl::Capsule<S>& capsule,
+                                          const fcl::Transform3<S>& X);
+template <typename S>
+std::unique_ptr<RegionBody<S>> regionBody(const fcl::Cylinder<S>& cylinder,
                                           const fcl::Transform3<S>& X);
 /// The halfspace that the shape leaves along the hit's normal, bounded by the plane through
 /// the hit's point on the other geometry.
