@@ -231,6 +231,43 @@ std::vector<OutlinePoint<S>> capOutline(const RegionBody<S>& body, const Contact
   return outline;
 }
 
+/// The outline as a convex polygon, counter-clockwise: as it is where it turns left at every
+/// vertex (up to `merge`), else the convex hull of its points (monotone chain), which a
+/// sampling that rounding has reordered or folded would otherwise make a wrong clip of.
+template <typename S>
+std::vector<OutlinePoint<S>> convexOutline(std::vector<OutlinePoint<S>> outline, S merge) {
+  const std::size_t n = outline.size();
+  if (n < 3) return outline;
+  bool convex = true;
+  S turning = S(0);
+  for (std::size_t i = 0; i < n && convex; ++i) {
+    const Vector2<S> e0 = outline[(i + 1) % n].y - outline[i].y;
+    const Vector2<S> e1 = outline[(i + 2) % n].y - outline[(i + 1) % n].y;
+    convex = cross2(e0, e1) >= -merge * (e0.norm() + e1.norm());
+    turning += std::atan2(cross2(e0, e1), e0.dot(e1));
+  }
+  if (convex && std::abs(turning - S(2 * M_PI)) < S(0.5)) return outline;
+  std::sort(outline.begin(), outline.end(), [](const OutlinePoint<S>& a, const OutlinePoint<S>& b) {
+    return a.y.x() < b.y.x() || (a.y.x() == b.y.x() && a.y.y() < b.y.y());
+  });
+  std::vector<OutlinePoint<S>> hull(2 * n);
+  std::size_t k = 0;
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::size_t start = k;
+    for (std::size_t i = 0; i < n; ++i) {
+      const OutlinePoint<S>& p = pass == 0 ? outline[i] : outline[n - 1 - i];
+      while (k >= start + 2 && cross2(Vector2<S>(hull[k - 1].y - hull[k - 2].y),
+                                      Vector2<S>(p.y - hull[k - 2].y)) <= S(0)) {
+        --k;
+      }
+      hull[k++] = p;
+    }
+    --k;  // the last point starts the other chain
+  }
+  hull.resize(k);
+  return hull;
+}
+
 /// The convex polygon `subject` clipped by the convex polygon `clip` (both counter-clockwise;
 /// Sutherland–Hodgman).
 /// (The subject's vertices keep their surface points; the new ones have none.)
@@ -347,12 +384,15 @@ ContactManifold<S> contactRegion(const RegionBody<S>& a, const RegionBody<S>& b,
   const S merge = S(64) * std::numeric_limits<S>::epsilon() * size;
 
   // Each cap: the body beyond the other's supporting plane less the tolerance.
-  std::vector<OutlinePoint<S>> region =
-      capOutline(a, plane, n, S(hit.on_shape.dot(n) - thickness), hit.on_shape, options, merge);
+  std::vector<OutlinePoint<S>> region = convexOutline(
+      capOutline(a, plane, n, S(hit.on_shape.dot(n) - thickness), hit.on_shape, options, merge),
+      merge);
   if (!b.unbounded()) {
     const Vector3<S> m = -n;
-    region = clipConvex(region, capOutline(b, plane, m, S(hit.on_other.dot(m) - thickness),
-                                           hit.on_other, options, merge));
+    region =
+        clipConvex(region, convexOutline(capOutline(b, plane, m, S(hit.on_other.dot(m) - thickness),
+                                                    hit.on_other, options, merge),
+                                         merge));
   }
 
   // The depth at each vertex, along n: the shape's surface point is known where the vertex is
