@@ -62,8 +62,9 @@
 /// - distance: the signed distance (overlapping: −(the shortest separating translation)), or −1
 ///   when they overlap and request.enable_signed_distance is false; nearest_points (world, the
 ///   caller's order) the two witnesses; b1 = b2 = fcl::DistanceResult::NONE.
-/// - collide: when they overlap, with num_max_contacts = 1 (or against a cone) one fcl::Contact: pos halfway between the witnesses, normal the separating
-///   direction from o1 to o2, penetration_depth = −(signed distance). With num_max_contacts > 1
+/// - collide: when they overlap, with num_max_contacts = 1 (or against a cone) one fcl::Contact:
+///   pos halfway between the witnesses, normal the separating direction from o1 to o2,
+///   penetration_depth = −(signed distance). With num_max_contacts > 1
 ///   against the geometries contact_manifold.h builds regions for, the manifold's places (at
 ///   most four, and at most the room left): the deepest first, then those spanning the region;
 ///   each with the pair's normal, pos halfway between the two surfaces there and its own depth

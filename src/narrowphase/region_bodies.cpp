@@ -260,8 +260,8 @@ class RoundBody final : public PosedBody<S> {
     const S end = w.z() >= -tie ? h_ : -h_;
     if (capsule_) return this->toWorld(Vector3<S>(Vector3<S>(0, 0, end) + r_ * w.normalized()));
     const S side = std::hypot(w.x(), w.y());
-    const Vector3<S> rim = side > tie ? Vector3<S>(r_ * w.x() / side, r_ * w.y() / side, end)
-                                      : Vector3<S>(0, 0, end);
+    const Vector3<S> rim =
+        side > tie ? Vector3<S>(r_ * w.x() / side, r_ * w.y() / side, end) : Vector3<S>(0, 0, end);
     return this->toWorld(rim);
   }
   /// The largest s of the line in the body: for a cylinder, within r of the axis and within
