@@ -16,8 +16,8 @@
 /// the deepest place and span the region's area.
 ///
 /// Answered for the other geometry being a Superellipsoid, fcl::Sphere, Ellipsoid, Box, Convex,
-/// TriangleP, Capsule, Cylinder, Halfspace and Plane. For fcl::Cone and BVH models the call
-/// refuses (std::invalid_argument naming the node type): their regions are not built yet.
+/// TriangleP, Capsule, Cylinder, Cone, Halfspace and Plane. For BVH models the call refuses
+/// (std::invalid_argument naming the node type): their regions are not built yet.
 
 #include <fcl/geometry/collision_geometry.h>
 

@@ -77,7 +77,7 @@ ContactManifold<S> contactManifold(const Superellipsoid<S>& shape, const fcl::Tr
     detail::throwInvalidArgument(
         kWhere,
         "the other geometry must be a Superellipsoid, fcl::Sphere, Ellipsoid, Box, Convex, "
-        "TriangleP, Capsule, Cylinder, Halfspace or Plane (its node type)",
+        "TriangleP, Capsule, Cylinder, Cone, Halfspace or Plane (its node type)",
         detail::nodeTypeName(other.getNodeType()));
   }
   return detail::pairManifold(pair, *kind, *hit, options);

@@ -197,7 +197,8 @@ inline constexpr PairKind<S> kPairKinds[] = {
      &shapeAnswer<S, fcl::Cylinder<S>, &checkRound<S, fcl::Cylinder<S>>, &cylinderHit<S>>,
      &shapeRegion<S, fcl::Cylinder<S>>},
     {fcl::GEOM_CONE, PairForm::kShape,
-     &shapeAnswer<S, fcl::Cone<S>, &checkRound<S, fcl::Cone<S>>, &coneHit<S>>, nullptr},
+     &shapeAnswer<S, fcl::Cone<S>, &checkRound<S, fcl::Cone<S>>, &coneHit<S>>,
+     &shapeRegion<S, fcl::Cone<S>>},
     // FCL's BVH models of the eight BV types: their vertices (mesh_pair.h).
     {fcl::BV_AABB, PairForm::kMesh, nullptr, nullptr},
     {fcl::BV_OBB, PairForm::kMesh, nullptr, nullptr},

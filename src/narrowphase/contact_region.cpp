@@ -415,6 +415,12 @@ ContactManifold<S> contactRegion(const RegionBody<S>& a, const RegionBody<S>& b,
       p.on_other = at - *down * n;
       p.position = S(0.5) * (p.on_shape + p.on_other);
       p.depth = *up + *down;
+      // Rounding on bodies far apart in scale (a float sphere of radius 3.7e30 on a unit shape)
+      // can overflow a measurement: such a vertex is dropped like a missed one.
+      if (!(p.on_shape.allFinite() && p.on_other.allFinite() && p.position.allFinite() &&
+            std::isfinite(p.depth))) {
+        continue;
+      }
       if (!places.empty() && (y - places.back().y).norm() <= merge) break;
       places.push_back({p, y});
       out.polygon.push_back(p);

@@ -236,10 +236,15 @@ Interval<S> withinRadius(const Vector3<S>& q, const Vector3<S>& m, S r, int axes
   return {(-b - root) / a, (-b + root) / a};
 }
 
-/// Where |q_z + s·m_z| ≤ h.
+/// Where |q_z + s·m_z| ≤ h. A line within a millionth of a radian of the slab's planes (one
+/// across an end disc's plane: the region's rim) is within it everywhere or nowhere, rounding's
+/// share of h counting as within: else a line on an end's plane would leave the slab wherever
+/// the rounding of q_z over the tiny m_z puts it.
 template <typename S>
-Interval<S> withinSlab(S qz, S mz, S h) {
-  if (std::abs(mz) <= kEps<S>) return std::abs(qz) <= h ? Interval<S>::all() : Interval<S>::none();
+Interval<S> withinSlab(S qz, S mz, S h, S size) {
+  if (std::abs(mz) <= S(1e-6)) {
+    return std::abs(qz) <= h + S(1e3) * kEps<S> * size ? Interval<S>::all() : Interval<S>::none();
+  }
   const S t1 = (-h - qz) / mz, t2 = (h - qz) / mz;
   return {std::min(t1, t2), std::max(t1, t2)};
 }
@@ -268,7 +273,7 @@ class RoundBody final : public PosedBody<S> {
   /// the slab; for a capsule, the largest of that and of the two end balls'.
   std::optional<S> extent(const Vector3<S>& y, const Vector3<S>& m) const override {
     const Vector3<S> q = this->toLocal(y), mm = this->directionToLocal(m);
-    Interval<S> best = withinRadius(q, mm, r_, 2).meet(withinSlab(q.z(), mm.z(), h_));
+    Interval<S> best = withinRadius(q, mm, r_, 2).meet(withinSlab(q.z(), mm.z(), h_, size()));
     if (capsule_) {
       for (S end : {-h_, h_}) {
         const Interval<S> ball = withinRadius(Vector3<S>(q - Vector3<S>(0, 0, end)), mm, r_, 3);
@@ -283,6 +288,63 @@ class RoundBody final : public PosedBody<S> {
  private:
   S r_, h_;
   bool capsule_;
+};
+
+/// A cone: its base the disc of radius r at z = −h, its apex at z = h (FCL's cone, h = lz/2).
+template <typename S>
+class ConeBody final : public PosedBody<S> {
+ public:
+  ConeBody(S r, S h, const fcl::Transform3<S>& X)
+      : PosedBody<S>(X), r_(r), h_(h), slope_(h > S(0) ? r / (S(2) * h) : S(0)) {}
+  /// The apex, or the rim point (the base's centre for a direction along −z) of the base,
+  /// whichever is farther along v; a tie within rounding goes to the apex.
+  Vector3<S> support(const Vector3<S>& v) const override {
+    const Vector3<S> w = this->directionToLocal(v);
+    const S tie = S(64) * kEps<S> * w.norm() * std::max(r_, h_);
+    const S side = std::hypot(w.x(), w.y());
+    if (S(2) * h_ * w.z() >= r_ * side - tie) return this->toWorld(Vector3<S>(0, 0, h_));
+    const Vector3<S> rim = side > S(64) * kEps<S> * w.norm()
+                               ? Vector3<S>(r_ * w.x() / side, r_ * w.y() / side, -h_)
+                               : Vector3<S>(0, 0, -h_);
+    return this->toWorld(rim);
+  }
+  /// The largest s of the line in the slab |z| ≤ h where the distance from the axis is at most
+  /// slope·(h − z): the line's interval ends at a slab face or on the side, where the
+  /// quadratic |xy|² = slope²·(h − z)² has a root; the largest candidate inside is the answer.
+  std::optional<S> extent(const Vector3<S>& y, const Vector3<S>& m) const override {
+    const Vector3<S> q = this->toLocal(y), mm = this->directionToLocal(m);
+    const Interval<S> slab = withinSlab(q.z(), mm.z(), h_, size());
+    if (slab.empty()) return std::nullopt;
+    const S k2 = slope_ * slope_, up = h_ - q.z();
+    const S a = mm.head(2).squaredNorm() - k2 * mm.z() * mm.z();
+    const S b = q.head(2).dot(mm.head(2)) + k2 * up * mm.z();
+    const S c = q.head(2).squaredNorm() - k2 * up * up;
+    S candidates[4] = {slab.lo, slab.hi, std::numeric_limits<S>::quiet_NaN(),
+                       std::numeric_limits<S>::quiet_NaN()};
+    if (std::abs(a) > S(1e-12)) {
+      const S disc = b * b - a * c;
+      if (disc >= S(0)) {
+        const S root = std::sqrt(disc);
+        candidates[2] = (-b - root) / a;
+        candidates[3] = (-b + root) / a;
+      }
+    } else if (b != S(0)) {  // along a generator: one root
+      candidates[2] = -c / (S(2) * b);
+    }
+    const S slack = S(1e3) * kEps<S> * std::max(r_, h_);
+    std::optional<S> best;
+    for (S s : candidates) {
+      if (!std::isfinite(s) || s < slab.lo - slack || s > slab.hi + slack) continue;
+      const Vector3<S> p = q + s * mm;
+      if (std::hypot(p.x(), p.y()) > slope_ * (h_ - p.z()) + slack) continue;
+      if (!best || s > *best) best = s;
+    }
+    return best;
+  }
+  S size() const override { return std::max(r_, h_); }
+
+ private:
+  S r_, h_, slope_;
 };
 
 /// The halfspace n·x ≤ offset (unit n, world).
@@ -386,6 +448,10 @@ std::unique_ptr<RegionBody<S>> regionBody(const fcl::Cylinder<S>& cylinder,
   return std::make_unique<RoundBody<S>>(cylinder.radius, S(0.5) * cylinder.lz, false, X);
 }
 template <typename S>
+std::unique_ptr<RegionBody<S>> regionBody(const fcl::Cone<S>& cone, const fcl::Transform3<S>& X) {
+  return std::make_unique<ConeBody<S>>(cone.radius, S(0.5) * cone.lz, X);
+}
+template <typename S>
 std::unique_ptr<RegionBody<S>> flatRegionBody(const PairHit<S>& hit) {
   const Vector3<S> n = -hit.normal.normalized();
   return std::make_unique<FlatBody<S>>(n, n.dot(hit.on_other), hit.on_other);
@@ -407,6 +473,8 @@ std::unique_ptr<RegionBody<S>> flatRegionBody(const PairHit<S>& hit) {
   template std::unique_ptr<RegionBody<S>> regionBody(const fcl::Capsule<S>&,     \
                                                      const fcl::Transform3<S>&); \
   template std::unique_ptr<RegionBody<S>> regionBody(const fcl::Cylinder<S>&,    \
+                                                     const fcl::Transform3<S>&); \
+  template std::unique_ptr<RegionBody<S>> regionBody(const fcl::Cone<S>&,        \
                                                      const fcl::Transform3<S>&); \
   template std::unique_ptr<RegionBody<S>> flatRegionBody(const PairHit<S>&);
 FSE_INSTANTIATE_REGION_BODIES(float)

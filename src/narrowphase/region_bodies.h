@@ -9,11 +9,14 @@
 //   box, convex, triangle  the best vertex; the extent over the faces' planes
 //   capsule, cylinder  closed forms (within the radius of the axis, within the slab of its
 //                    length; a capsule's end balls)
+//   cone             the apex or a rim point; the extent within the slab and inside the side's
+//                    quadratic
 //   halfspace, plane  the halfspace the hit's normal leaves (a plane's side the shape is
 //                    pushed to): its boundary through the hit's point on it
 
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cone.h>
 #include <fcl/geometry/shape/convex.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/ellipsoid.h>
@@ -50,6 +53,8 @@ std::unique_ptr<RegionBody<S>> regionBody(const fcl::Capsule<S>& capsule,
 template <typename S>
 std::unique_ptr<RegionBody<S>> regionBody(const fcl::Cylinder<S>& cylinder,
                                           const fcl::Transform3<S>& X);
+template <typename S>
+std::unique_ptr<RegionBody<S>> regionBody(const fcl::Cone<S>& cone, const fcl::Transform3<S>& X);
 /// The halfspace that the shape leaves along the hit's normal, bounded by the plane through
 /// the hit's point on the other geometry.
 template <typename S>

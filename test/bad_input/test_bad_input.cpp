@@ -203,9 +203,9 @@ TYPED_TEST(BadInputTest, ContactManifold) {
                 "options.outline_area_tolerance must be finite and > 0", "0");
   expectRefused(with([](ManifoldOptions<S>& o) { o.max_points = 0; }), where,
                 "options.max_points must be >= 1", "0");
-  const fcl::Cone<S> cone(S(0.2), S(0.5));
-  expectRefused([&] { contactManifold(shape, X, cone, X); }, where,
-                "the other geometry must be a Superellipsoid", "GEOM_CONE");
+  const auto mesh = makeBVHModel<fcl::OBBRSS<S>>(tessellate(shape, 8));
+  expectRefused([&] { contactManifold(shape, X, *mesh, X); }, where,
+                "the other geometry must be a Superellipsoid", "BV_OBBRSS");
   // The other shape's parameters, as for every pair query.
   const fcl::Sphere<S> bad_sphere(nan);
   expectRefused([&] { contactManifold(shape, X, bad_sphere, X); }, where,
