@@ -181,9 +181,12 @@ void runNearSurface(benchmark::State& state, bool fresh) {
 /// pressed 1e-3 of its size into it and tilted up to 0.02 rad, over 64 such poses: against a
 /// halfspace, another box-like superellipsoid and a box. The whole manifold (contactManifold),
 /// FCL's collide() with four contacts (the manifold's places), and the one-contact collide() of
-/// the same pair as the baseline, measured in the same run.
+/// the same pair as the baseline, measured in the same run. The warm start: the body moving
+/// along a closed path of 64 steps (turning by about 1e-3 rad and moving 5e-3 of its size a
+/// step), the reduced places only (outline_area_tolerance 1), fresh and warm-started from the
+/// step before.
 enum class ManifoldPartner { kHalfspace, kSuperellipsoid, kBox };
-enum class ManifoldCall { kOneContact, kFourContacts, kManifold };
+enum class ManifoldCall { kOneContact, kFourContacts, kManifold, kStepFresh, kStepWarm };
 
 void runManifold(benchmark::State& state, ManifoldPartner partner, ManifoldCall call) {
   const auto body = std::make_shared<Superellipsoid<double>>(0.5, 0.4, 0.3, 0.2, 0.2);
@@ -198,27 +201,40 @@ void runManifold(benchmark::State& state, ManifoldPartner partner, ManifoldCall 
     other = std::make_shared<fcl::Box<double>>(1.2, 1.0, 0.6);
     half_height = 0.3;
   }
+  const bool path = call == ManifoldCall::kStepFresh || call == ManifoldCall::kStepWarm;
   std::mt19937 rng(52);
   std::uniform_real_distribution<double> tilt(-0.02, 0.02), shift(-0.1, 0.1);
   std::vector<fcl::Transform3d> poses;
   for (int k = 0; k < 64; ++k) {
+    const double phase = 2 * M_PI * k / 64;
     fcl::Transform3d X = fcl::Transform3d::Identity();
-    X.linear() = (Eigen::AngleAxisd(tilt(rng), Eigen::Vector3d::UnitX()) *
-                  Eigen::AngleAxisd(tilt(rng), Eigen::Vector3d::UnitY()))
-                     .toRotationMatrix();
+    X.linear() =
+        (Eigen::AngleAxisd(path ? 0.01 * std::sin(phase) : tilt(rng), Eigen::Vector3d::UnitX()) *
+         Eigen::AngleAxisd(path ? 0.01 * std::cos(phase) : tilt(rng), Eigen::Vector3d::UnitY()))
+            .toRotationMatrix();
     const double lowest =
         (X * body->supportPoint(-(X.linear().transpose() * Vector3<double>::UnitZ()))).z();
-    X.translation() = Eigen::Vector3d(shift(rng), shift(rng), -lowest - 5e-4);
+    X.translation() =
+        path ? Eigen::Vector3d(0.05 * std::cos(phase), 0.05 * std::sin(phase), -lowest - 5e-4)
+             : Eigen::Vector3d(shift(rng), shift(rng), -lowest - 5e-4);
     poses.push_back(X);
   }
   fcl::Transform3d X_other = fcl::Transform3d::Identity();
   X_other.translation().z() = -half_height;
   fcl::CollisionObjectd a(body), b(other, X_other);
   const fcl::CollisionRequestd request(call == ManifoldCall::kOneContact ? 1 : 4, true);
+  ManifoldOptions<double> points_only;
+  points_only.outline_area_tolerance = 1;
+  ManifoldWarmStart<double> warm;
   std::size_t i = 0;
   for (auto _ : state) {
     if (call == ManifoldCall::kManifold) {
       benchmark::DoNotOptimize(contactManifold(*body, poses[i], *other, X_other));
+    } else if (call == ManifoldCall::kStepFresh) {
+      benchmark::DoNotOptimize(contactManifold(*body, poses[i], *other, X_other, points_only));
+    } else if (call == ManifoldCall::kStepWarm) {
+      benchmark::DoNotOptimize(
+          contactManifold(*body, poses[i], *other, X_other, points_only, warm));
     } else {
       a.setTransform(poses[i]);
       fcl::CollisionResultd result;
@@ -274,7 +290,9 @@ void registerAll() {
                                       std::pair{"box", ManifoldPartner::kBox}}) {
     for (const auto& [prefix, call] : {std::pair{"OneContact/", ManifoldCall::kOneContact},
                                        std::pair{"FourContacts/", ManifoldCall::kFourContacts},
-                                       std::pair{"Manifold/", ManifoldCall::kManifold}}) {
+                                       std::pair{"Manifold/", ManifoldCall::kManifold},
+                                       std::pair{"ManifoldStepFresh/", ManifoldCall::kStepFresh},
+                                       std::pair{"ManifoldStepWarm/", ManifoldCall::kStepWarm}}) {
       benchmark::RegisterBenchmark((std::string(prefix) + name).c_str(),
                                    [partner = partner, call = call](benchmark::State& state) {
                                      runManifold(state, partner, call);

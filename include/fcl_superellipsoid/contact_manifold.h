@@ -65,6 +65,19 @@ struct ContactManifold {
   std::vector<ManifoldPoint<S>> points;
 };
 
+/// What a manifold leaves for the next one of the same pair a step later: each cap's extreme
+/// points in the outline's first `outline_samples` directions, in its own geometry's frame. A
+/// warm-started call starts each direction's search there (after a small motion, a step or two
+/// of Newton's method instead of a search from the deepest point) and leaves its own points.
+/// Empty, or of another number of directions, it starts nothing; a point that is not the
+/// extreme any more (a large motion, another pair) is solved again from the start, so the
+/// answer is the fresh call's whatever the warm start holds.
+template <typename S>
+struct ManifoldWarmStart {
+  std::vector<Vector3<S>> shape_points;  ///< the superellipsoid's, in its frame
+  std::vector<Vector3<S>> other_points;  ///< the other geometry's, in its frame (none: flat)
+};
+
 /// The contact region of the superellipsoid `shape` at X_WS and `other` at X_WO. Refuses a
 /// geometry it has no region for, a pose or option that is not valid, naming the value.
 template <typename S>
@@ -72,6 +85,12 @@ ContactManifold<S> contactManifold(const Superellipsoid<S>& shape, const fcl::Tr
                                    const fcl::CollisionGeometry<S>& other,
                                    const fcl::Transform3<S>& X_WO,
                                    const ManifoldOptions<S>& options = {});
+/// The same, warm-started from `warm` (see ManifoldWarmStart), which it then overwrites.
+template <typename S>
+ContactManifold<S> contactManifold(const Superellipsoid<S>& shape, const fcl::Transform3<S>& X_WS,
+                                   const fcl::CollisionGeometry<S>& other,
+                                   const fcl::Transform3<S>& X_WO,
+                                   const ManifoldOptions<S>& options, ManifoldWarmStart<S>& warm);
 
 }  // namespace fcl_superellipsoid
 

@@ -49,22 +49,50 @@ std::string nodeTypeName(fcl::NODE_TYPE t) {
 
 template <typename S>
 ContactManifold<S> pairManifold(const Pair<S>& pair, const PairKind<S>& kind, const PairHit<S>& hit,
-                                const ManifoldOptions<S>& options) {
+                                const ManifoldOptions<S>& options, ManifoldWarmStart<S>* warm) {
   const S tolerance =
       options.patch_tolerance > S(0) ? options.patch_tolerance : S(1e-3) * pair.shape->size();
   const std::unique_ptr<RegionBody<S>> shape = regionBody(*pair.shape, *pair.X_WS);
   const std::unique_ptr<RegionBody<S>> other = kind.region(pair, hit);
-  return contactRegion(*shape, *other, hit, Matrix3<S>(pair.X_WS->linear()), tolerance,
-                       pair.shape->size(), options);
+  if (warm == nullptr) {
+    return contactRegion(*shape, *other, hit, Matrix3<S>(pair.X_WS->linear()), tolerance,
+                         pair.shape->size(), options);
+  }
+  // The warm start's points go to the world and back, each in its geometry's frame; a set with
+  // a point that is not finite starts nothing.
+  const fcl::Transform3<S>& X_WS = *pair.X_WS;
+  const fcl::Transform3<S>& X_WO = *pair.X_WO;
+  RegionWarmStart<S> world;
+  const auto toWorld = [](const std::vector<Vector3<S>>& local, const fcl::Transform3<S>& X,
+                          std::vector<Vector3<S>>& out) {
+    for (const Vector3<S>& p : local) {
+      out.push_back(X * p);
+      if (!out.back().allFinite()) {
+        out.clear();
+        return;
+      }
+    }
+  };
+  toWorld(warm->shape_points, X_WS, world.a);
+  toWorld(warm->other_points, X_WO, world.b);
+  ContactManifold<S> out = contactRegion(*shape, *other, hit, Matrix3<S>(X_WS.linear()), tolerance,
+                                         pair.shape->size(), options, &world);
+  warm->shape_points.clear();
+  warm->other_points.clear();
+  const fcl::Transform3<S> X_SW = X_WS.inverse(), X_OW = X_WO.inverse();
+  for (const Vector3<S>& p : world.a) warm->shape_points.push_back(X_SW * p);
+  for (const Vector3<S>& p : world.b) warm->other_points.push_back(X_OW * p);
+  return out;
 }
 
 }  // namespace detail
 
+namespace {
+
 template <typename S>
-ContactManifold<S> contactManifold(const Superellipsoid<S>& shape, const fcl::Transform3<S>& X_WS,
-                                   const fcl::CollisionGeometry<S>& other,
-                                   const fcl::Transform3<S>& X_WO,
-                                   const ManifoldOptions<S>& options) {
+ContactManifold<S> manifold(const Superellipsoid<S>& shape, const fcl::Transform3<S>& X_WS,
+                            const fcl::CollisionGeometry<S>& other, const fcl::Transform3<S>& X_WO,
+                            const ManifoldOptions<S>& options, ManifoldWarmStart<S>* warm) {
   constexpr const char* kWhere = "contactManifold";
   detail::checkPose(kWhere, "X_WS", X_WS);
   detail::checkPose(kWhere, "X_WO", X_WO);
@@ -80,16 +108,37 @@ ContactManifold<S> contactManifold(const Superellipsoid<S>& shape, const fcl::Tr
         "TriangleP, Capsule, Cylinder, Cone, Halfspace or Plane (its node type)",
         detail::nodeTypeName(other.getNodeType()));
   }
-  return detail::pairManifold(pair, *kind, *hit, options);
+  return detail::pairManifold(pair, *kind, *hit, options, warm);
+}
+
+}  // namespace
+
+template <typename S>
+ContactManifold<S> contactManifold(const Superellipsoid<S>& shape, const fcl::Transform3<S>& X_WS,
+                                   const fcl::CollisionGeometry<S>& other,
+                                   const fcl::Transform3<S>& X_WO,
+                                   const ManifoldOptions<S>& options) {
+  return manifold(shape, X_WS, other, X_WO, options, static_cast<ManifoldWarmStart<S>*>(nullptr));
+}
+
+template <typename S>
+ContactManifold<S> contactManifold(const Superellipsoid<S>& shape, const fcl::Transform3<S>& X_WS,
+                                   const fcl::CollisionGeometry<S>& other,
+                                   const fcl::Transform3<S>& X_WO,
+                                   const ManifoldOptions<S>& options, ManifoldWarmStart<S>& warm) {
+  return manifold(shape, X_WS, other, X_WO, options, &warm);
 }
 
 #define FSE_INSTANTIATE_CONTACT_MANIFOLD(S)                                                  \
   template ContactManifold<S> contactManifold(                                               \
       const Superellipsoid<S>&, const fcl::Transform3<S>&, const fcl::CollisionGeometry<S>&, \
       const fcl::Transform3<S>&, const ManifoldOptions<S>&);                                 \
+  template ContactManifold<S> contactManifold(                                               \
+      const Superellipsoid<S>&, const fcl::Transform3<S>&, const fcl::CollisionGeometry<S>&, \
+      const fcl::Transform3<S>&, const ManifoldOptions<S>&, ManifoldWarmStart<S>&);          \
   template ContactManifold<S> detail::pairManifold(                                          \
       const detail::Pair<S>&, const detail::PairKind<S>&, const detail::PairHit<S>&,         \
-      const ManifoldOptions<S>&);
+      const ManifoldOptions<S>&, ManifoldWarmStart<S>*);
 FSE_INSTANTIATE_CONTACT_MANIFOLD(float)
 FSE_INSTANTIATE_CONTACT_MANIFOLD(double)
 

@@ -10,10 +10,11 @@ namespace fcl_superellipsoid {
 namespace detail {
 
 /// The manifold of `pair` (its row `kind`, which has a region, and its hit), with options
-/// checked; a patch tolerance < 0 is 1e-3 × the shape's size.
+/// checked; a patch tolerance < 0 is 1e-3 × the shape's size. `warm` may be null.
 template <typename S>
 ContactManifold<S> pairManifold(const Pair<S>& pair, const PairKind<S>& kind, const PairHit<S>& hit,
-                                const ManifoldOptions<S>& options);
+                                const ManifoldOptions<S>& options,
+                                ManifoldWarmStart<S>* warm = nullptr);
 
 }  // namespace detail
 }  // namespace fcl_superellipsoid

@@ -155,11 +155,14 @@ Vector3<S> capExtreme(const RegionBody<S>& body, const Vector3<S>& u, const Vect
 /// wherever it lies farther than η beyond the edge. The area an edge misses is about 2/3 of
 /// its length times its gap, so η = 1.5·area_tolerance·A/P (A, P: the first polygon's area and
 /// perimeter) keeps the missed area within area_tolerance of the whole. Points closer than
-/// `merge` to their predecessor are merged.
+/// `merge` to their predecessor are merged. `warm` (if not null): read as the samples' starts
+/// where it holds one per direction (else each starts from its neighbour's answer), then
+/// replaced by the samples' answers.
 template <typename S>
 std::vector<OutlinePoint<S>> capOutline(const RegionBody<S>& body, const ContactPlane<S>& plane,
                                         const Vector3<S>& m, S c, const Vector3<S>& deepest,
-                                        const ManifoldOptions<S>& options, S merge) {
+                                        const ManifoldOptions<S>& options, S merge,
+                                        std::vector<Vector3<S>>* warm) {
   std::vector<OutlinePoint<S>> outline;
   // Every point found is in the cap, so none may lie farther along a direction than that
   // direction's extreme: a warm-started answer that does is a wrong root, and the direction is
@@ -184,13 +187,18 @@ std::vector<OutlinePoint<S>> capOutline(const RegionBody<S>& body, const Contact
     return best == &o ? o : *best;
   };
   const int samples = options.outline_samples;
+  const bool warm_started = warm != nullptr && warm->size() == std::size_t(samples);
+  std::vector<Vector3<S>> answers;
   for (int k = 0; k < samples; ++k) {
     const S phi = S(2 * M_PI) * S(k) / S(samples);
-    const OutlinePoint<S> o =
-        extreme(Vector2<S>(std::cos(phi), std::sin(phi)),
-                outline.empty() || !outline.back().exact ? nullptr : &outline.back().on);
+    const Vector3<S>* start = warm_started                               ? &(*warm)[std::size_t(k)]
+                              : outline.empty() || !outline.back().exact ? nullptr
+                                                                         : &outline.back().on;
+    const OutlinePoint<S> o = extreme(Vector2<S>(std::cos(phi), std::sin(phi)), start);
+    if (warm != nullptr) answers.push_back(o.on);
     if (outline.empty() || (o.y - outline.back().y).norm() > merge) outline.push_back(o);
   }
+  if (warm != nullptr) *warm = std::move(answers);
   while (outline.size() > 1 && (outline.front().y - outline.back().y).norm() <= merge) {
     outline.pop_back();
   }
@@ -368,7 +376,7 @@ std::vector<ManifoldPoint<S>> reduce(const std::vector<Place<S>>& candidates, in
 template <typename S>
 ContactManifold<S> contactRegion(const RegionBody<S>& a, const RegionBody<S>& b,
                                  const PairHit<S>& hit, const Matrix3<S>& R_WS, S tolerance, S size,
-                                 const ManifoldOptions<S>& options) {
+                                 const ManifoldOptions<S>& options, RegionWarmStart<S>* warm) {
   ContactManifold<S> out;
   out.normal = hit.normal.normalized();
   out.distance = hit.distance;
@@ -384,15 +392,17 @@ ContactManifold<S> contactRegion(const RegionBody<S>& a, const RegionBody<S>& b,
   const S merge = S(64) * std::numeric_limits<S>::epsilon() * size;
 
   // Each cap: the body beyond the other's supporting plane less the tolerance.
-  std::vector<OutlinePoint<S>> region = convexOutline(
-      capOutline(a, plane, n, S(hit.on_shape.dot(n) - thickness), hit.on_shape, options, merge),
-      merge);
+  std::vector<OutlinePoint<S>> region =
+      convexOutline(capOutline(a, plane, n, S(hit.on_shape.dot(n) - thickness), hit.on_shape,
+                               options, merge, warm != nullptr ? &warm->a : nullptr),
+                    merge);
   if (!b.unbounded()) {
     const Vector3<S> m = -n;
-    region =
-        clipConvex(region, convexOutline(capOutline(b, plane, m, S(hit.on_other.dot(m) - thickness),
-                                                    hit.on_other, options, merge),
-                                         merge));
+    region = clipConvex(
+        region,
+        convexOutline(capOutline(b, plane, m, S(hit.on_other.dot(m) - thickness), hit.on_other,
+                                 options, merge, warm != nullptr ? &warm->b : nullptr),
+                      merge));
   }
 
   // The depth at each vertex, along n: the shape's surface point is known where the vertex is
@@ -443,7 +453,7 @@ ContactManifold<S> contactRegion(const RegionBody<S>& a, const RegionBody<S>& b,
 #define FSE_INSTANTIATE_CONTACT_REGION(S)                                               \
   template ContactManifold<S> contactRegion(const RegionBody<S>&, const RegionBody<S>&, \
                                             const PairHit<S>&, const Matrix3<S>&, S, S, \
-                                            const ManifoldOptions<S>&);
+                                            const ManifoldOptions<S>&, RegionWarmStart<S>*);
 FSE_INSTANTIATE_CONTACT_REGION(float)
 FSE_INSTANTIATE_CONTACT_REGION(double)
 

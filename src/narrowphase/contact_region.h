@@ -45,13 +45,22 @@ class RegionBody {
   virtual bool unbounded() const { return false; }
 };
 
+/// Each cap's first outline points (world), one per sample direction: read as the starts of
+/// a warm-started region (where there are as many as directions), then overwritten with the
+/// region's own.
+template <typename S>
+struct RegionWarmStart {
+  std::vector<Vector3<S>> a, b;
+};
+
 /// The region of the pair whose hit is `hit`, A being the superellipsoid's body (R_WS its
 /// orientation, which fixes where the outlines' samples start) and B the other's. `tolerance`
-/// > 0, `size` the shape's, options checked.
+/// > 0, `size` the shape's, options checked; `warm` may be null.
 template <typename S>
 ContactManifold<S> contactRegion(const RegionBody<S>& a, const RegionBody<S>& b,
                                  const PairHit<S>& hit, const Matrix3<S>& R_WS, S tolerance, S size,
-                                 const ManifoldOptions<S>& options);
+                                 const ManifoldOptions<S>& options,
+                                 RegionWarmStart<S>* warm = nullptr);
 
 }  // namespace detail
 }  // namespace fcl_superellipsoid

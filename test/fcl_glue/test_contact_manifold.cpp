@@ -576,6 +576,90 @@ TEST(ManifoldThroughFcl, CollideWithSeveralContactsGivesTheOverlappingPlaces) {
   EXPECT_NEAR(result.getContact(0).penetration_depth, 0.01, 1e-12);
 }
 
+// --- Warm starts across steps ---------------------------------------------------------------
+
+/// The largest difference between two manifolds' places (positions, surface points, depths);
+/// infinite where their counts differ.
+double manifoldDifference(const ContactManifold<double>& a, const ContactManifold<double>& b) {
+  if (a.polygon.size() != b.polygon.size() || a.points.size() != b.points.size()) {
+    return std::numeric_limits<double>::infinity();
+  }
+  double worst = (a.normal - b.normal).norm();
+  for (const auto& [p, q] : {std::pair{&a.polygon, &b.polygon}, std::pair{&a.points, &b.points}}) {
+    for (std::size_t i = 0; i < p->size(); ++i) {
+      const ManifoldPoint<double>&x = (*p)[i], &y = (*q)[i];
+      worst = std::max({worst, (x.position - y.position).norm(), (x.on_shape - y.on_shape).norm(),
+                        (x.on_other - y.on_other).norm(), std::abs(x.depth - y.depth)});
+    }
+  }
+  return worst;
+}
+
+// Along a path of small steps (a box-like body turning by about 1e-3 rad and moving 1 % of its
+// size a step on a face), the warm-started manifold is the fresh one; so is it after a jump
+// across the face, from another pair's warm start, and from a warm start of NaNs or of another
+// number of directions; and the warm start holds one point per direction of each bounded cap.
+TEST(ManifoldWarmStart, SameAnswerAsAFreshCall) {
+  const Superellipsoid<double> body(0.5, 0.4, 0.3, 0.2, 0.3);
+  const double size = 0.5;
+  std::vector<std::unique_ptr<fcl::CollisionGeometry<double>>> others;
+  others.push_back(std::make_unique<fcl::Halfspace<double>>(Vector3<double>(0, 0, 1), 0.0));
+  others.push_back(std::make_unique<Superellipsoid<double>>(0.6, 0.5, 0.3, 0.3, 0.2));
+  others.push_back(std::make_unique<fcl::Box<double>>(1.2, 1.0, 0.6));
+  others.push_back(std::make_unique<fcl::Cylinder<double>>(0.8, 0.6));
+  const double below[] = {0, 0.3, 0.3, 0.3};  // the other's half-height under the face
+  for (std::size_t o = 0; o < others.size(); ++o) {
+    for (const double area_tolerance : {0.005, 1.0}) {
+      ManifoldOptions<double> options;
+      options.outline_area_tolerance = area_tolerance;
+      fcl::Transform3d X_WO = fcl::Transform3d::Identity();
+      X_WO.translation().z() = -below[o];
+      ManifoldWarmStart<double> warm;
+      double worst = 0;
+      for (int k = 0; k < 60; ++k) {
+        fcl::Transform3d X = fcl::Transform3d::Identity();
+        const double phase = 0.1 * k + (k >= 40 ? 2.0 : 0.0);  // a jump at step 40
+        X.linear() = (Eigen::AngleAxisd(0.01 * std::sin(phase), Eigen::Vector3d::UnitX()) *
+                      Eigen::AngleAxisd(0.01 * std::cos(phase), Eigen::Vector3d::UnitY()) *
+                      Eigen::AngleAxisd(0.3 * phase, Eigen::Vector3d::UnitZ()))
+                         .toRotationMatrix();
+        X.translation() = Eigen::Vector3d(0.05 * std::cos(phase), 0.05 * std::sin(phase), 0);
+        X.translation().z() =
+            -(X * body.supportPoint(-(X.linear().transpose() * Vector3<double>::UnitZ()))).z() -
+            0.002;
+        if (k == 50) {  // NaNs, then another number of directions
+          for (Vector3<double>& p : warm.shape_points) p.x() = std::nan("");
+        }
+        if (k == 55) warm.shape_points.pop_back();
+        const ContactManifold<double> fresh = contactManifold(body, X, *others[o], X_WO, options);
+        const ContactManifold<double> warmed =
+            contactManifold(body, X, *others[o], X_WO, options, warm);
+        SCOPED_TRACE(::testing::Message() << "other " << others[o]->getNodeType() << " area "
+                                          << area_tolerance << " step " << k);
+        ASSERT_FALSE(fresh.points.empty());
+        worst = std::max(worst, manifoldDifference(fresh, warmed));
+        EXPECT_EQ(warm.shape_points.size(), std::size_t(options.outline_samples));
+        EXPECT_EQ(warm.other_points.size(), o == 0 ? 0u : std::size_t(options.outline_samples));
+      }
+      EXPECT_LE(worst, 1e-11 * size) << "other " << others[o]->getNodeType();
+    }
+  }
+  // Another pair's warm start: the answer is still this pair's.
+  ManifoldWarmStart<double> other_pair;
+  const fcl::Transform3d I = fcl::Transform3d::Identity();
+  fcl::Transform3d X_WB = I;
+  X_WB.translation().z() = 0.299;
+  contactManifold(body, X_WB, *others[1], fcl::Transform3d(Eigen::Translation3d(0, 0, -0.3)), {},
+                  other_pair);
+  fcl::Transform3d X_tilted = X_WB;
+  X_tilted.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  X_tilted.translation().z() = 0.25;
+  const ContactManifold<double> fresh = contactManifold(body, X_tilted, *others[0], I);
+  const ContactManifold<double> warmed =
+      contactManifold(body, X_tilted, *others[0], I, {}, other_pair);
+  EXPECT_LE(manifoldDifference(fresh, warmed), 1e-11 * size);
+}
+
 // --- Partners far larger or smaller than the shape -------------------------------------------
 
 template <typename S>
