@@ -54,12 +54,8 @@ ContactManifold<S> pairManifold(const Pair<S>& pair, const PairKind<S>& kind, co
       options.patch_tolerance > S(0) ? options.patch_tolerance : S(1e-3) * pair.shape->size();
   const std::unique_ptr<RegionBody<S>> shape = regionBody(*pair.shape, *pair.X_WS);
   const std::unique_ptr<RegionBody<S>> other = kind.region(pair, hit);
-  if (warm == nullptr) {
-    return contactRegion(*shape, *other, hit, Matrix3<S>(pair.X_WS->linear()), tolerance,
-                         pair.shape->size(), options);
-  }
-  // The warm start's points go to the world and back, each in its geometry's frame; a set with
-  // a point that is not finite starts nothing.
+  // A warm start's points go to the world and back, each in its geometry's frame; a set with a
+  // point that is not finite starts nothing.
   const fcl::Transform3<S>& X_WS = *pair.X_WS;
   const fcl::Transform3<S>& X_WO = *pair.X_WO;
   RegionWarmStart<S> world;
@@ -73,15 +69,20 @@ ContactManifold<S> pairManifold(const Pair<S>& pair, const PairKind<S>& kind, co
       }
     }
   };
-  toWorld(warm->shape_points, X_WS, world.a);
-  toWorld(warm->other_points, X_WO, world.b);
-  ContactManifold<S> out = contactRegion(*shape, *other, hit, Matrix3<S>(X_WS.linear()), tolerance,
-                                         pair.shape->size(), options, &world);
-  warm->shape_points.clear();
-  warm->other_points.clear();
-  const fcl::Transform3<S> X_SW = X_WS.inverse(), X_OW = X_WO.inverse();
-  for (const Vector3<S>& p : world.a) warm->shape_points.push_back(X_SW * p);
-  for (const Vector3<S>& p : world.b) warm->other_points.push_back(X_OW * p);
+  if (warm != nullptr) {
+    toWorld(warm->shape_points, X_WS, world.a);
+    toWorld(warm->other_points, X_WO, world.b);
+  }
+  ContactManifold<S> out =
+      contactRegion(*shape, *other, hit, Matrix3<S>(X_WS.linear()), tolerance, pair.shape->size(),
+                    options, warm != nullptr ? &world : nullptr);
+  if (warm != nullptr) {
+    const fcl::Transform3<S> X_SW = X_WS.inverse(), X_OW = X_WO.inverse();
+    warm->shape_points.clear();
+    warm->other_points.clear();
+    for (const Vector3<S>& p : world.a) warm->shape_points.push_back(X_SW * p);
+    for (const Vector3<S>& p : world.b) warm->other_points.push_back(X_OW * p);
+  }
   return out;
 }
 
