@@ -3,12 +3,14 @@
 #   scripts/bench.sh            the quick mode (seconds after the build): out/ (CSV, JSON, PNG plots)
 #                               and out/benchmark.md; then the scenes' quick variants, the cloth
 #                               and the bowl (scripts/scenes.sh: out/scenes/); then the Python
-#                               module's speed, quick (out/python/)
+#                               module's speed, quick (out/python/); then the superquadric
+#                               fit's quick study (scripts/fit.sh: out/fit/)
 #   scripts/bench.sh --full     everything (about 30 minutes on 2 cores): fse_bench's full run, the
 #                               micro-benchmarks, the culling study and the aspect sweep, the pairs,
-#                               the scenes' full variants (scripts/scenes.sh --full) and the Python
-#                               module's speed; writes every generated page (docs/benchmark.md,
-#                               docs/pairs.md, docs/scenes.md, docs/python.md's results), their
+#                               the scenes' full variants (scripts/scenes.sh --full), the Python
+#                               module's speed and the fitting study (scripts/fit.sh --full);
+#                               writes every generated page (docs/benchmark.md, docs/pairs.md,
+#                               docs/scenes.md, docs/python.md's and docs/fitting.md's results), their
 #                               pictures and the README's generated blocks, all from this one run
 #   scripts/bench.sh --pairs    the superellipsoid against every FCL shape, against FCL's libccd and
 #                               Bullet (a minute); writes docs/pairs.md's results, docs/bench/pairs.png
@@ -61,6 +63,7 @@ if [ "$1" = "--full" ]; then
   pairs
   scripts/scenes.sh --full
   python_speed --docs docs
+  scripts/fit.sh --full
   exit 0
 fi
 $bench/fse_bench "$@"   # writes to out/ unless --out says otherwise
@@ -72,4 +75,5 @@ esac
 if [ $# -eq 1 ] && [ "$1" = "--quick" ]; then
   scripts/scenes.sh
   python_speed --quick
+  scripts/fit.sh
 fi

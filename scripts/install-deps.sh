@@ -7,7 +7,7 @@
 set -euo pipefail
 packages=(cmake g++ make libfcl-dev libccd-dev libeigen3-dev liboctomap-dev libgtest-dev
           libbenchmark-dev libcli11-dev libbullet-dev nlohmann-json3-dev libtbb-dev libhwy-dev
-          pybind11-dev python3-dev python3-numpy python3-pytest python3-scipy python3-matplotlib)
+          libceres-dev pybind11-dev python3-dev python3-numpy python3-pytest python3-scipy python3-matplotlib)
 case "${1:-}" in
   --bench) packages+=(povray python3-open3d) ;;
   --fuzz) packages+=(clang libclang-rt-dev) ;;
