@@ -33,6 +33,8 @@ constexpr int kStartIterations = 25;
 // With a robust loss, the initial guesses are fitted with the loss at this multiple of the
 // requested scale, then the best at the requested one.
 constexpr double kWideScale = 3;
+// With a robust loss, this many of the best initial guesses go on to the requested scale.
+constexpr std::size_t kRobustFinalists = 3;
 // With a robust loss, the initial guesses' extents leave out this fraction of the points at
 // each end of each axis (outliers widen the cloud's extent).
 constexpr double kRobustTrim = 0.05;
@@ -251,8 +253,9 @@ StartResult fitFrom(const std::vector<Eigen::Vector3d>& cloud, const Superquadri
                              theta.data());
   }
   problem.SetManifold(rotation.coeffs().data(), new ceres::EigenQuaternionManifold);
-  for (int i = 0; i < 3; ++i)
+  for (int i = 0; i < 3; ++i) {
     problem.SetParameterLowerBound(theta.data(), i, kMinRadiusFraction * size);
+  }
   for (int i = 3; i < kShape; ++i) {
     problem.SetParameterLowerBound(theta.data(), i, kMinExponent);
     problem.SetParameterUpperBound(theta.data(), i, kMaxExponent);
@@ -392,18 +395,28 @@ FitResult fitSuperquadric(const std::vector<Eigen::Vector3d>& cloud, const FitOp
   std::vector<double> scales = {options.loss_scale * size};
   if (options.loss != Loss::kNone) scales.insert(scales.begin(), kWideScale * scales[0]);
   FitResult result;
-  // Every guess for a few iterations; the best goes on, through the narrower scales.
-  StartResult best;
+  // Every guess for a few iterations; the best go on, through the narrower scale, and the lowest
+  // final cost wins. With a robust loss the three best go on: the wide loss's ranking need not be
+  // the narrow one's (a huge shape with a flat side through part of the cloud can lead at the
+  // wide scale and lose at the requested one).
+  std::vector<StartResult> starts;
   for (const Superquadric& guess : guesses) {
-    const StartResult r = fitFrom(cloud, guess, options, scales.front(),
-                                  std::min(kStartIterations, options.max_iterations), size);
-    result.iterations += r.iterations;
+    starts.push_back(fitFrom(cloud, guess, options, scales.front(),
+                             std::min(kStartIterations, options.max_iterations), size));
+    result.iterations += starts.back().iterations;
     ++result.starts;
-    if (r.cost < best.cost) best = r;
   }
-  for (const double scale : scales) {
-    best = fitFrom(cloud, best.fitted, options, scale, options.max_iterations, size);
-    result.iterations += best.iterations;
+  std::sort(starts.begin(), starts.end(),
+            [](const StartResult& a, const StartResult& b) { return a.cost < b.cost; });
+  const std::size_t finalists = options.loss == Loss::kNone ? 1 : kRobustFinalists;
+  StartResult best;
+  for (std::size_t k = 0; k < std::min(finalists, starts.size()); ++k) {
+    StartResult r = starts[k];
+    for (const double scale : scales) {
+      r = fitFrom(cloud, r.fitted, options, scale, options.max_iterations, size);
+      result.iterations += r.iterations;
+    }
+    if (r.cost < best.cost) best = r;
   }
   result.fitted = best.fitted;
   result.cost = best.cost;

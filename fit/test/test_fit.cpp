@@ -144,11 +144,15 @@ TEST(Fit, ExactResidualRecoversTheShapeFromAnExactCloud) {
   }
 }
 
-// With noise and outliers, the fit's inliers are as near the fitted surface as the noise puts
-// them from the true one.
-TEST(Fit, ExactResidualReachesTheNoiseLevelWithOutliersAndACauchyLoss) {
+// A fit of a cloud with noise and outliers (Cauchy loss); how near the inliers are to the fitted
+// surface, over how near the noise put them to the true one (the floor a fit can reach), and the
+// shape error.
+struct RobustFit {
+  double rms_over_floor, shape_error;
+};
+RobustFit robustFit(const Superquadric& truth) {
   CloudSpec spec;
-  spec.truth = namedShapes()[0];
+  spec.truth = truth;
   spec.points = 600;
   spec.noise = 0.01;
   spec.outliers = 0.2;
@@ -158,11 +162,23 @@ TEST(Fit, ExactResidualReachesTheNoiseLevelWithOutliersAndACauchyLoss) {
   options.loss = Loss::kCauchy;
   options.loss_scale = 0.02;
   const FitResult fit = fitSuperquadric(cloud.points, options);
-  const double sigma = spec.noise * spec.truth.size();
-  // The noise's own RMS about the true surface, the floor a fit can reach.
-  const double floor = surfaceRms(spec.truth, cloud.inliers);
-  EXPECT_LT(surfaceRms(fit.fitted, cloud.inliers), 1.1 * floor) << "σ " << sigma;
-  EXPECT_LT(surfaceError(fit.fitted, spec.truth), 0.01);
+  return {surfaceRms(fit.fitted, cloud.inliers) / surfaceRms(truth, cloud.inliers),
+          surfaceError(fit.fitted, truth)};
+}
+
+TEST(Fit, ExactResidualReachesTheNoiseLevelWithOutliersAndACauchyLoss) {
+  const RobustFit fit = robustFit(namedShapes()[0]);
+  EXPECT_LT(fit.rms_over_floor, 1.1);
+  EXPECT_LT(fit.shape_error, 0.01);
+}
+
+// Open (docs/fitting.md → "What the results say"): on this elongated shape the robust exact fit
+// ends in a far larger shape with a flat side through part of the cloud.
+TEST(Fit, DISABLED_ExactResidualReachesTheNoiseLevelWithOutliersOnAnElongatedShape) {
+  const RobustFit fit =
+      robustFit(shapeOf({0.2, 0.55, 1.8}, 0.8, 0.5, {2, -1, 1}, 0.9, {-1, 2, 0.5}));
+  EXPECT_LT(fit.rms_over_floor, 1.1);
+  EXPECT_LT(fit.shape_error, 0.01);
 }
 
 TEST(Fit, BadCloudsAreRefusedNamingWhy) {

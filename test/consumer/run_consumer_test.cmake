@@ -1,10 +1,12 @@
 # Consumes the installed package from an out-of-tree project (test/consumer/).
 #   BUILD_DIR set:   install that build tree (the one under test) into a temporary prefix.
-#   BUILD_DIR empty: configure and build the library afresh with BUILD_SHARED_LIBS=${BUILD_SHARED}
-#                    (so the suite checks the other library kind too), then install it. That
-#                    build is unoptimised (Debug, -O0): it checks how the kind is packaged and
-#                    linked, not its speed, in half the compile time of a Release build; and it
-#                    builds what is installed only (no tests, benchmark, scene runner or module).
+#   BUILD_DIR empty: configure the library afresh with BUILD_SHARED_LIBS=${BUILD_SHARED} (so the
+#                    suite checks the other library kind too), made of the compiled objects of
+#                    the build tree OBJECTS_FROM (src/CMakeLists.txt → FSE_OBJECTS_FROM: the
+#                    objects are alike for both kinds), or compiled afresh without OBJECTS_FROM
+#                    (Debug, -O0: how the kind is packaged and linked, not its speed); only what
+#                    is installed (no tests, benchmark, scene runner, fit or module); then
+#                    install it.
 # Then configure, build and run the consumer against the prefix.
 file(REMOVE_RECURSE ${WORK_DIR})
 set(prefix ${WORK_DIR}/prefix)
@@ -19,7 +21,7 @@ if(NOT BUILD_DIR)
   run(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${BUILD_DIR} -G ${GENERATOR}
       -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-O0 -DBUILD_SHARED_LIBS=${BUILD_SHARED}
       -DFSE_BUILD_TESTS=OFF -DFSE_BUILD_BENCH=OFF -DFSE_BUILD_SIM=OFF -DFSE_BUILD_FIT=OFF
-      -DFSE_BUILD_PYTHON=OFF)
+      -DFSE_BUILD_PYTHON=OFF -DFSE_OBJECTS_FROM=${OBJECTS_FROM})
   run(${CMAKE_COMMAND} --build ${BUILD_DIR} --parallel 2)
 endif()
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
