@@ -120,8 +120,8 @@ def plot(cases, path):
                 plt.Line2D([], [], color="k", marker="^", ls="", label="one side"),
                 plt.Line2D([], [], color="k", marker="o", ls="", markerfacecolor="none",
                            label="20 % outliers")]
-    left.legend(handles=handles, fontsize=7, loc="lower right")
-    fig.tight_layout()
+    fig.legend(handles=handles, fontsize=8, loc="lower center", ncol=len(handles), frameon=False)
+    fig.tight_layout(rect=(0, 0.06, 1, 1))
     fig.savefig(path, dpi=110)
     print(f"written: {path}")
 
