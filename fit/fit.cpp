@@ -65,10 +65,13 @@ class CurrentShapes final : public ceres::EvaluationCallback {
     }
   }
 
-  /// The shape of θ, if it was built for these values (else the caller builds its own).
-  const fse::Superellipsoidd* base(const double* theta) const {
-    return std::memcmp(theta, built_for_.data(), sizeof(built_for_)) == 0 && base_ ? &*base_
-                                                                                   : nullptr;
+  /// The shape of θ: the one built for these values, else one built into `own`; nullptr for
+  /// values out of the shape's range.
+  const fse::Superellipsoidd* shapeFor(const double* theta,
+                                       std::optional<fse::Superellipsoidd>* own) const {
+    if (base_ && std::memcmp(theta, built_for_.data(), sizeof(built_for_)) == 0) return &*base_;
+    *own = build({theta[0], theta[1], theta[2], theta[3], theta[4]});
+    return *own ? &**own : nullptr;
   }
   /// The shape of θ + h_i·e_i and h_i, if built.
   const fse::Superellipsoidd* shifted(int i, double* step) const {
@@ -113,21 +116,39 @@ Eigen::Vector3d inShape(const Eigen::Vector3d& p_W, const double* q, const doubl
          (p_W - Eigen::Map<const Eigen::Vector3d>(t));
 }
 
-// The exact signed distance of one point, with its analytic Jacobian (exactResidualGradient);
-// the manifold's δ is half of the rotation vector ω, so ∂d/∂δ = 2·∂d/∂ω.
-class ExactDistance final : public ceres::SizedCostFunction<1, kRotation, kCentre, kShape> {
+// A point's residual, for Ceres: a refusal by the library (a point or shape out of its range)
+// is a failed evaluation, which Ceres answers with a shorter step.
+class PointResidual : public ceres::SizedCostFunction<1, kRotation, kCentre, kShape> {
  public:
-  ExactDistance(const Eigen::Vector3d& p_W, const CurrentShapes& shapes)
+  PointResidual(const Eigen::Vector3d& p_W, const CurrentShapes& shapes)
       : p_W_(p_W), shapes_(shapes) {}
 
-  bool Evaluate(double const* const* x, double* residual, double** jacobians) const override {
-    std::optional<fse::Superellipsoidd> own;
-    const fse::Superellipsoidd* shape = shapes_.base(x[2]);
-    if (shape == nullptr) {
-      own = CurrentShapes::build({x[2][0], x[2][1], x[2][2], x[2][3], x[2][4]});
-      if (!own) return false;
-      shape = &*own;
+  bool Evaluate(double const* const* x, double* residual, double** jacobians) const final {
+    try {
+      return evaluate(x, residual, jacobians);
+    } catch (const std::invalid_argument&) {
+      return false;
     }
+  }
+
+ protected:
+  virtual bool evaluate(double const* const* x, double* residual, double** jacobians) const = 0;
+
+  Eigen::Vector3d p_W_;
+  const CurrentShapes& shapes_;
+};
+
+// The exact signed distance of one point, with its analytic Jacobian (exactResidualGradient);
+// the manifold's δ is half of the rotation vector ω, so ∂d/∂δ = 2·∂d/∂ω.
+class ExactDistance final : public PointResidual {
+ public:
+  using PointResidual::PointResidual;
+
+ private:
+  bool evaluate(double const* const* x, double* residual, double** jacobians) const override {
+    std::optional<fse::Superellipsoidd> own;
+    const fse::Superellipsoidd* shape = shapes_.shapeFor(x[2], &own);
+    if (shape == nullptr) return false;
     const Eigen::Quaterniond q = Eigen::Map<const Eigen::Quaterniond>(x[0]).normalized();
     const Eigen::Vector3d t = Eigen::Map<const Eigen::Vector3d>(x[1]);
     if (jacobians == nullptr) {
@@ -143,28 +164,20 @@ class ExactDistance final : public ceres::SizedCostFunction<1, kRotation, kCentr
       std::copy(g.d_shape.data(), g.d_shape.data() + kShape, jacobians[2]);
     return std::isfinite(residual[0]);
   }
-
- private:
-  Eigen::Vector3d p_W_;
-  const CurrentShapes& shapes_;
 };
 
 // The radial distance of one point, with forward differences in the twelve tangent directions
 // (three of the rotation, three of the centre, five of θ): one value and twelve more per point.
-class RadialDistance final : public ceres::SizedCostFunction<1, kRotation, kCentre, kShape> {
+class RadialDistance final : public PointResidual {
  public:
-  RadialDistance(const Eigen::Vector3d& p_W, const CurrentShapes& shapes)
-      : p_W_(p_W), shapes_(shapes) {}
+  using PointResidual::PointResidual;
 
-  bool Evaluate(double const* const* x, double* residual, double** jacobians) const override {
+ private:
+  bool evaluate(double const* const* x, double* residual, double** jacobians) const override {
     std::optional<fse::Superellipsoidd> own;
-    const fse::Superellipsoidd* shape = shapes_.base(x[2]);
-    const bool shared = shape != nullptr;
-    if (!shared) {
-      own = CurrentShapes::build({x[2][0], x[2][1], x[2][2], x[2][3], x[2][4]});
-      if (!own) return false;
-      shape = &*own;
-    }
+    const fse::Superellipsoidd* shape = shapes_.shapeFor(x[2], &own);
+    if (shape == nullptr) return false;
+    const bool shared = !own.has_value();  // the callback's: its perturbed shapes apply
     const double r0 = radial(*shape, x[0], x[1]);
     residual[0] = r0;
     if (!std::isfinite(r0)) return false;
@@ -208,15 +221,11 @@ class RadialDistance final : public ceres::SizedCostFunction<1, kRotation, kCent
     return true;
   }
 
- private:
   double radial(const fse::Superellipsoidd& shape, const double* q, const double* t) const {
     fse::DistanceOptions<double> options;
     options.method = fse::DistanceMethod::kRadial;
     return fse::pointDistance(shape, inShape(p_W_, q, t), options).distance;
   }
-
-  Eigen::Vector3d p_W_;
-  const CurrentShapes& shapes_;
 };
 
 struct StartResult {
