@@ -1,7 +1,7 @@
 // Fuzz target 3: the FCL front end and FCL's table entries (GJKSolver_libccd) on random pairs
 // and poses: a superellipsoid of the fixed family (shape_family.h) against every FCL shape,
-// another of the family, a mesh or a point cloud in every BV type, both argument orders, float
-// and double. No crash, finite results,
+// another of the family, a mesh or a point cloud in every BV type (mostly of a fixed family
+// too, familyMesh below), both argument orders, float and double. No crash, finite results,
 // and distance and collide agree on the sign. docs/hardening.md → "Fuzzing".
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
@@ -14,7 +14,11 @@
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/geometry/shape/triangle_p.h>
 
+#include <algorithm>
+#include <array>
+#include <map>
 #include <memory>
+#include <random>
 #include <vector>
 
 #include "fcl_superellipsoid/fcl_integration.h"
@@ -28,8 +32,10 @@ using fcl_superellipsoid::Superellipsoid;
 using fcl_superellipsoid::TriangleMesh;
 using fuzz::Vector3;
 
+/// The mesh's vertices: a tessellated superellipsoid of 5–80 vertices or a point cloud of 1–80,
+/// around `size`; empty if the superellipsoid was refused.
 template <typename S>
-std::shared_ptr<fcl::CollisionGeometry<S>> makeMesh(FuzzedDataProvider& in, S size) {
+TriangleMesh<S> meshFromBytes(FuzzedDataProvider& in, S size) {
   TriangleMesh<S> mesh;
   if (in.ConsumeBool()) {
     try {
@@ -39,7 +45,6 @@ std::shared_ptr<fcl::CollisionGeometry<S>> makeMesh(FuzzedDataProvider& in, S si
       mesh = fcl_superellipsoid::tessellate(other, in.ConsumeIntegralInRange<int>(5, 80));
     } catch (const std::invalid_argument& e) {
       fuzz::requireNamedValue(e);
-      return nullptr;
     }
   } else {  // a point cloud
     const int n = in.ConsumeIntegralInRange<int>(1, 80);
@@ -49,8 +54,14 @@ std::shared_ptr<fcl::CollisionGeometry<S>> makeMesh(FuzzedDataProvider& in, S si
                                  size * (S(2) - S(4) * in.ConsumeProbability<S>()));
     }
   }
+  return mesh;
+}
+
+/// A BVH of the mesh in one of the 8 BV types.
+template <typename S>
+std::shared_ptr<fcl::CollisionGeometry<S>> makeBVH(const TriangleMesh<S>& mesh, int bv) {
   using fcl_superellipsoid::makeBVHModel;
-  switch (in.ConsumeIntegralInRange<int>(0, 7)) {
+  switch (bv) {
     case 0:
       return makeBVHModel<fcl::AABB<S>>(mesh);
     case 1:
@@ -68,6 +79,61 @@ std::shared_ptr<fcl::CollisionGeometry<S>> makeMesh(FuzzedDataProvider& in, S si
     default:
       return makeBVHModel<fcl::KDOP<S, 24>>(mesh);
   }
+}
+
+/// The meshes the query inputs draw from (as the shapes, shape_family.h): for each shape size,
+/// 4 tessellated superellipsoids (5, 12, 40 and 80 vertices; box-like, round, sharp and a
+/// needle) and 4 point clouds (1, 8, 30 and 80 points within ±2 sizes) in each of the 8 BV
+/// types, built on first use and kept. A new mesh's BVH is built from the input's bytes in 1
+/// input in 16.
+constexpr int kFamilyMeshes = 8;
+constexpr int kBVTypes = 8;
+
+template <typename S>
+std::shared_ptr<fcl::CollisionGeometry<S>> familyMesh(S size, int variant, int bv) {
+  static std::map<S,
+                  std::array<std::shared_ptr<fcl::CollisionGeometry<S>>, kFamilyMeshes * kBVTypes>>
+      family;
+  std::shared_ptr<fcl::CollisionGeometry<S>>& model = family[size][variant * kBVTypes + bv];
+  if (model) return model;
+  TriangleMesh<S> mesh;
+  if (variant < 4) {
+    struct Tessellated {
+      S a, b, c, e1, e2;
+      int resolution;
+    };
+    const Tessellated t[] = {{S(1), S(0.7), S(0.4), S(0.3), S(1.7), 5},
+                             {S(0.5), S(1), S(0.2), S(1), S(1), 12},
+                             {S(1), S(1), S(1), S(0.1), S(0.1), 40},
+                             {S(0.2), S(0.2), S(1), S(1.98), S(0.65), 80}};
+    const Tessellated& v = t[variant];
+    using Range = fcl_superellipsoid::NumericRange<S>;
+    auto radius = [size](S r) {  // kept in the radius range at its ends
+      return std::clamp(size * r, Range::kMinRadius * S(1.001), Range::kMaxRadius);
+    };
+    mesh = fcl_superellipsoid::tessellate(
+        Superellipsoid<S>(radius(v.a), radius(v.b), radius(v.c), v.e1, v.e2), v.resolution);
+  } else {
+    const int counts[] = {1, 8, 30, 80};
+    std::mt19937 rng{unsigned(variant)};
+    std::uniform_real_distribution<double> u(-2, 2);
+    for (int i = 0; i < counts[variant - 4]; ++i) {
+      mesh.vertices.emplace_back(size * S(u(rng)), size * S(u(rng)), size * S(u(rng)));
+    }
+  }
+  model = makeBVH(mesh, bv);
+  return model;
+}
+
+template <typename S>
+std::shared_ptr<fcl::CollisionGeometry<S>> makeMesh(FuzzedDataProvider& in, S size) {
+  if (in.ConsumeIntegralInRange<int>(0, 15) == 0) {  // a new mesh
+    const TriangleMesh<S> mesh = meshFromBytes(in, size);
+    if (mesh.vertices.empty()) return nullptr;
+    return makeBVH(mesh, in.ConsumeIntegralInRange<int>(0, kBVTypes - 1));
+  }
+  const int variant = in.ConsumeIntegralInRange<int>(0, kFamilyMeshes - 1);
+  return familyMesh(size, variant, in.ConsumeIntegralInRange<int>(0, kBVTypes - 1));
 }
 
 /// A point within `reach` of the origin.
@@ -189,9 +255,10 @@ void run(FuzzedDataProvider& in) {
   const S band = (sizeof(S) == 4 ? S(1e-4) : S(1e-9)) * size * S(16);
   const bool penetrating = request.enable_signed_distance ? d < S(0) : d == S(-1);
   if (std::abs(d) > band) {
-    fuzz::require(penetrating == collision.isCollision(),
-                  "distance " + std::to_string(double(d)) + " but collide says " +
-                      std::to_string(collision.isCollision()));
+    fuzz::require(penetrating == collision.isCollision(), [&] {
+      return "distance " + std::to_string(double(d)) + " but collide says " +
+             std::to_string(collision.isCollision());
+    });
   }
 }
 

@@ -23,9 +23,14 @@ cmake --build build-asan --parallel "$(nproc)" --target "${targets[@]}"
 mkdir -p fuzz-out
 for t in "${targets[@]}"; do
   mkdir -p "fuzz-out/$t"
+  # fuzz_fcl's inputs reach some 20,000 edges each, and libFuzzer's entropic schedule, which
+  # keeps a frequency for every one, took more than half of its time; without it the target
+  # runs twice as fast and reaches more coverage in the same time (docs/hardening.md → "Runs").
+  flags=()
+  if [ "$t" = fuzz_fcl ]; then flags=(-entropic=0); fi
   echo "== $t: $runs inputs"
   start=$(date +%s)
-  build-asan/fuzz/"$t" -runs="$runs" -timeout=30 -print_final_stats=1 \
+  build-asan/fuzz/"$t" -runs="$runs" -timeout=30 -print_final_stats=1 "${flags[@]}" \
     -artifact_prefix=fuzz-out/crash-"$t"- "fuzz-out/$t" "fuzz/corpus/$t"
   echo "== $t: $runs inputs in $(( $(date +%s) - start )) s, no crash, hang or contract failure"
 done

@@ -43,7 +43,7 @@ SmoothPairAnswer<S> solveSmoothPair(const SupportMap<S>& A, const SupportMap<S>&
   // from the lowest of: both frames' axes, a lattice over the sphere.
   if (!(best.f < S(0)) && !rollingCertified(best, rolling_radius(), tolerance)) {
     std::vector<Probe<S>> starts;
-    auto add = [&](const Vector3<S>& v) { starts.push_back(probe(A, B, v)); };
+    auto add = [&](const Vector3<S>& v) { starts.push_back(probe(A, B, v, false)); };
     for (int i = 0; i < 3; ++i) {
       for (S sign : {S(1), S(-1)}) {
         add(sign * A.pose().linear().col(i));

@@ -7,6 +7,7 @@
 // cone's apex (depth_candidates.h). docs/math.md → "Smooth partners: Newton on the sphere".
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -22,8 +23,13 @@ constexpr int kSphereNewtonIterations = 200;
 /// A full Newton step (no shift, no backtracking) shorter than this (rad) is the last: where
 /// Newton converges quadratically the error after it is of order this squared, far below
 /// rounding, and the steps after it only wander in F's rounding noise (docs/math.md → "Smooth
-/// partners: Newton on the sphere").
+/// partners: Newton on the sphere"). In float, whose noise is above 1e-9 rad, √ε/16 instead
+/// (2.2e-5 rad: its square is 4e-10, still far below float's rounding).
 constexpr double kSphereNewtonConverged = 1e-9;
+template <typename S>
+S sphereNewtonConverged() {
+  return std::max(S(kSphereNewtonConverged), std::sqrt(std::numeric_limits<S>::epsilon()) / 16);
+}
 
 template <typename S>
 struct Probe {
@@ -33,9 +39,12 @@ struct Probe {
   Eigen::Matrix<S, 3, 3> hessian;  // ∇²F(v)
 };
 
+/// F at the unit v, with its Hessian if `with_hessian` (else NaN; F and the witnesses are the
+/// same).
 template <typename S>
-Probe<S> probe(const SupportMap<S>& A, const SupportMap<S>& B, const Vector3<S>& v) {
-  const SupportEval<S> ea = A.evaluate(v), eb = B.evaluate(-v);
+Probe<S> probe(const SupportMap<S>& A, const SupportMap<S>& B, const Vector3<S>& v,
+               bool with_hessian = true) {
+  const SupportEval<S> ea = A.evaluate(v, with_hessian), eb = B.evaluate(-v, with_hessian);
   return {ea.value + eb.value, v, ea.point, eb.point, ea.hessian + eb.hessian};
 }
 
@@ -87,17 +96,22 @@ Probe<S> localMinimum(
     // F's rounding: support values are sums of terms as large as |a|, |b|.
     const S noise = S(16) * eps * (p.a.norm() + p.b.norm() + std::abs(p.f));
     bool moved = false, full = false;
+    // The full step's probe comes with its Hessian (it is usually taken); the backtracking
+    // trials' without, and the one taken gets it afterwards. A trial that rounds to v itself
+    // ends the search: it cannot lower F, nor can the shorter ones after it (in float that
+    // happens long before α reaches its floor).
     for (S alpha = S(1); alpha > S(1e-12); alpha *= S(0.5)) {
       const Vector3<S> v = (p.v + alpha * (x1 * t1 + x2 * t2)).normalized();
-      const Probe<S> q = probe(A, B, v);
+      if (alpha < S(1) && v == p.v) break;
+      const Probe<S> q = probe(A, B, v, alpha == S(1));
       if (q.f <= p.f + S(1e-4) * alpha * slope || (q.f <= p.f + noise && alpha == S(1))) {
         moved = (q.v - p.v).norm() > S(0);
         full = alpha == S(1);
-        p = q;
+        p = full ? q : probe(A, B, v);
         break;
       }
     }
-    const bool converged = full && !shifted && length < S(kSphereNewtonConverged);
+    const bool converged = full && !shifted && length < sphereNewtonConverged<S>();
     if (!moved || length < S(64) * eps || converged || stop(p)) break;
   }
   return p;

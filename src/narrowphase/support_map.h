@@ -13,6 +13,7 @@
 #include <fcl/geometry/shape/sphere.h>
 
 #include <Eigen/Core>
+#include <limits>
 
 #include "fcl_superellipsoid/superellipsoid.h"
 #include "shape/nested_norm.h"
@@ -58,20 +59,23 @@ class SupportMap {
     return map;
   }
 
-  /// The support at the world direction v ≠ 0.
-  SupportEval<S> evaluate(const Vector3<S>& v) const {
+  /// The support at the world direction v ≠ 0; without `with_hessian` the Hessian is not
+  /// computed (NaN), the value and the point are the same.
+  SupportEval<S> evaluate(const Vector3<S>& v, bool with_hessian = true) const {
     const Vector3<S> u = X_.linear().transpose() * v;
     const S m = u.cwiseAbs().maxCoeff();
     const Vector3<S> w = u / m;  // largest component ±1
     SupportEval<S> local;
     if (kind_ == Kind::kSuperellipsoid) {
-      const NestedNormEval<S> e = norm_.evaluate(w.cwiseAbs(), true);
+      const NestedNormEval<S> e = norm_.evaluate(w.cwiseAbs(), with_hessian);
       local.value = e.value;
       local.point = intoOctantOf(w, e.gradient);
-      local.hessian = e.hessian;
-      for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) {
-          if ((w[i] < S(0)) != (w[j] < S(0))) local.hessian(i, j) = -local.hessian(i, j);
+      if (with_hessian) {
+        local.hessian = e.hessian;
+        for (int i = 0; i < 3; ++i) {
+          for (int j = 0; j < 3; ++j) {
+            if ((w[i] < S(0)) != (w[j] < S(0))) local.hessian(i, j) = -local.hessian(i, j);
+          }
         }
       }
     } else {
@@ -80,9 +84,11 @@ class SupportMap {
       local.value = dw.norm();
       if (local.value > S(0)) {
         local.point = radii_.cwiseProduct(dw) / local.value;
-        local.hessian = (Eigen::Matrix<S, 3, 3>(radii_.cwiseProduct(radii_).asDiagonal()) -
-                         local.point * local.point.transpose()) /
-                        local.value;
+        if (with_hessian) {
+          local.hessian = (Eigen::Matrix<S, 3, 3>(radii_.cwiseProduct(radii_).asDiagonal()) -
+                           local.point * local.point.transpose()) /
+                          local.value;
+        }
       } else {  // flat along w (a zero radius): the centre supports it
         local.point.setZero();
         local.hessian.setZero();
@@ -91,12 +97,16 @@ class SupportMap {
     SupportEval<S> out;
     out.value = m * local.value + v.dot(X_.translation());
     out.point = X_.linear() * local.point + X_.translation();
-    out.hessian = X_.linear() * local.hessian * X_.linear().transpose() / m;
+    if (with_hessian) {
+      out.hessian = X_.linear() * local.hessian * X_.linear().transpose() / m;
+    } else {
+      out.hessian.setConstant(std::numeric_limits<S>::quiet_NaN());
+    }
     return out;
   }
 
-  /// The support point only (no Hessian).
-  Vector3<S> point(const Vector3<S>& v) const { return evaluate(v).point; }
+  /// The support point only.
+  Vector3<S> point(const Vector3<S>& v) const { return evaluate(v, false).point; }
   const Vector3<S> centre() const { return X_.translation(); }
   const fcl::Transform3<S>& pose() const { return X_; }
 

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace fcl_superellipsoid {
 namespace detail {
@@ -53,6 +54,24 @@ Eigenvalues2<S> eigenvalues2(S b11, S b12, S b22) {
   const S big = positive ? mean + half_gap : mean - half_gap;
   const S small = big != S(0) ? det / big : S(0);
   return positive ? Eigenvalues2<S>{small, big, half_gap} : Eigenvalues2<S>{big, small, half_gap};
+}
+
+/// The unit eigenvector (c, s) of the lower eigenvalue, up to sign, from `half_gap` of
+/// eigenvalues2: the column of B − lowest·I with no cancellation, (b12, −(half_diff + half_gap))
+/// where b11 ≥ b22, else (half_diff − half_gap, b12), with half_diff = (b11 − b22)/2. The higher
+/// eigenvalue's is (−s, c). Where half_gap = 0 the block is a multiple of I and every unit vector
+/// is one: (1, 0).
+template <typename S>
+std::pair<S, S> lowerEigenvector(S b11, S b12, S b22, S half_gap) {
+  const S half_diff = (b11 - b22) / 2;
+  S c = b12, s = -(half_diff + half_gap);
+  if (half_diff < S(0)) {
+    c = half_diff - half_gap;
+    s = b12;
+  }
+  const S length = hypot2(c, s);
+  if (!(length > S(0))) return {S(1), S(0)};
+  return {c / length, s / length};
 }
 
 }  // namespace detail

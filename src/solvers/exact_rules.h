@@ -58,9 +58,17 @@ constexpr int kRingStartIterations = 8;
 /// more Newton step is taken from the point it reached, and the pair is accepted (counted as one
 /// more iteration) if that reduces the error. A straight step along a valley that is flat one way
 /// and curved the other lands at the right place along it but off its floor; the next step puts
-/// it back, where halving would creep (docs/hardening.md, finding 13). The SIMD kernel does
-/// not: the queries it does not converge go to the scalar solver.
+/// it back, where halving would creep (docs/hardening.md, finding 13). Where the tangent block
+/// is positive definite but flat one way (its eigenvalues' ratio below kValleyRatio) and that
+/// correction fails too, the valley itself is curved: a straight step along a ring of nearly
+/// nearest points leaves the ring by the step's square over its radius, which its own next step
+/// repeats. Then each trial (the full step and its halvings) is followed by restoring steps,
+/// Newton's steps along the tangent block's stiffer eigenvector only, back to the floor without
+/// moving along it (finding 25), up to kRestoringSteps while they reduce the error. The SIMD kernel
+/// does neither: the queries it does not converge go to the scalar solver.
 constexpr int kStepTrials = 5;
+constexpr int kRestoringSteps = 4;
+constexpr double kValleyRatio = 1e-2;
 
 /// An iterate component that would turn negative (leave the first octant) shrinks to this
 /// fraction of its previous value instead.
@@ -100,25 +108,10 @@ TangentBlock<S> convexifiedTangentBlock(S b11, S b12, S b22, S scale) {
     return {b11, b12, b22, false, false};
   }
   const auto [lowest, highest, half_gap] = eigenvalues2(b11, b12, b22);  // no cancellation
-  const S half_diff = (b11 - b22) / 2;
   if (!(lowest < below) || !std::isfinite(lowest)) return {b11, b12, b22, false, false};
-  // The unit eigenvector (c, s) of the lowest eigenvalue, from the column of B − lowest·I with
-  // no cancellation: (b12, −(half_diff + half_gap)) where b11 ≥ b22, else
-  // (−(−half_diff + half_gap), b12), up to sign. Where half_gap = 0 the block is a multiple of I
-  // and both eigenvalues are replaced below, so any unit vector serves.
-  S c = b12, s = -(half_diff + half_gap);
-  if (half_diff < S(0)) {
-    c = half_diff - half_gap;
-    s = b12;
-  }
-  const S length = hypot2(c, s);
-  if (length > S(0)) {
-    c /= length;
-    s /= length;
-  } else {
-    c = S(1);
-    s = S(0);
-  }
+  // Where half_gap = 0 the block is a multiple of I and both eigenvalues are replaced below, so
+  // any unit vector serves as (c, s).
+  const auto [c, s] = lowerEigenvector(b11, b12, b22, half_gap);
   const S high = highest < below ? wanted : highest;
   // M = wanted·(c, s)(c, s)ᵀ + high·(−s, c)(−s, c)ᵀ.
   return {wanted * c * c + high * s * s, (wanted - high) * c * s, wanted * s * s + high * c * c,

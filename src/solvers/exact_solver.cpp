@@ -556,6 +556,7 @@ class ExactSolver {
     Vector3<S> convexified;  // with the convexified block, if `convexify`
     bool convexify;          // an eigenvalue needed replacing (below)
     bool full_step_first;    // ... and the smallest was positive: try `plain` first
+    bool valley;             // positive definite, but flat one way (exact_rules::kValleyRatio)
   };
 
   /// The tangent block must be positive definite for the step to head for a minimum of the
@@ -580,6 +581,21 @@ class ExactSolver {
     return {t1, n.cross(t1)};
   }
 
+  /// The restoring step (exact_rules::kStepTrials): the Newton step of `system` at the normal n
+  /// along the tangent block's stiffer eigenvector only, back to a curved valley's floor without
+  /// moving along the valley. Not finite where that eigenvalue is not positive.
+  static Vector3<S> restoringStep(const NewtonSystem& system, const Vector3<S>& n) {
+    const std::pair<Vector3<S>, Vector3<S>> basis = tangentBasis(n);
+    const Vector3<S>&t1 = basis.first, &t2 = basis.second;
+    const Eigen::Matrix<S, 3, 3>& a = system.matrix;
+    const S b11 = t1.dot(a * t1), b22 = t2.dot(a * t2), b12 = t1.dot(a * t2);
+    const Eigenvalues2<S> e = eigenvalues2(b11, b12, b22);
+    if (!(e.highest > S(0))) return Vector3<S>::Constant(std::numeric_limits<S>::quiet_NaN());
+    const auto [c, s] = lowerEigenvector(b11, b12, b22, e.half_gap);
+    const Vector3<S> stiff = c * t2 - s * t1;  // (−s, c) in the basis
+    return (stiff.dot(system.residual) / e.highest) * stiff;
+  }
+
   static TangentSteps tangentSteps(const NewtonSystem& system, const Vector3<S>& n) {
     const std::pair<Vector3<S>, Vector3<S>> basis = tangentBasis(n);
     const Vector3<S>&t1 = basis.first, &t2 = basis.second;
@@ -592,7 +608,10 @@ class ExactSolver {
       return Vector3<S>(((m22 * c1 - m12 * c2) / det) * t1 + ((m11 * c2 - m12 * c1) / det) * t2);
     };
     const rules::TangentBlock<S> m = rules::convexifiedTangentBlock(b11, b12, b22, system.scale);
-    TangentSteps steps{solve(b11, b12, b22), Vector3<S>::Zero(), m.modified, m.full_step_first};
+    const Eigenvalues2<S> e = eigenvalues2(b11, b12, b22);
+    const bool valley = e.lowest > S(0) && e.lowest < S(rules::kValleyRatio) * e.highest;
+    TangentSteps steps{solve(b11, b12, b22), Vector3<S>::Zero(), m.modified, m.full_step_first,
+                       valley};
     if (m.modified) steps.convexified = solve(m.m11, m.m12, m.m22);
     return steps;
   }
@@ -625,7 +644,7 @@ class ExactSolver {
       ++iterations_;
       const TangentSteps steps = tangentSteps(primalSystem(c), c.normal);
       if (!steps.convexify || steps.full_step_first) {
-        if (steps.plain.allFinite() && tryStep(&c, steps.plain, true)) continue;
+        if (steps.plain.allFinite() && tryStep(&c, steps.plain, true, steps.valley)) continue;
         if (!steps.convexify) break;
       }
       if (!steps.convexified.allFinite() || !tryStep(&c, steps.convexified, false)) break;
@@ -680,10 +699,31 @@ class ExactSolver {
         e = trial;
         moved = true;
       };
+      // The restoring steps (exact_rules::kRestoringSteps) from a refused trial at the normal m
+      // (h's evaluation t there, its error `error`): accepted, and true, once below `target`.
+      auto restoreDual = [&](Vector3<S> m, NestedNormEval<S> t, S error, S target) {
+        for (int k = 1; k <= rules::kRestoringSteps && iterations_ + k <= limit_; ++k) {
+          const Vector3<S> back = restoringStep(dualSystem(m, t), m);
+          const Vector3<S> next_m = stayInOctant(m, Vector3<S>(m + back)).normalized();
+          if (!next_m.allFinite()) return false;
+          const NestedNormEval<S> next = dual_.evaluate(next_m, true);
+          const S next_error = errorAt(next.gradient, next_m);
+          if (!(next_error < error)) return false;
+          if (next_error < target) {
+            iterations_ += k;
+            accept(next_m, next, next_error);
+            return true;
+          }
+          m = next_m;
+          t = next;
+          error = next_error;
+        }
+        return false;
+      };
       // A step with halving; true if a trial reduced the error. A full Newton step (`corrected`)
-      // that fails gets its second-order correction (exact_rules::kStepTrials)
-      // before it is halved.
-      auto try_dual_step = [&](Vector3<S> step, bool corrected) {
+      // that fails gets its second-order correction, and in a `valley` every trial its restoring
+      // steps (exact_rules::kStepTrials), before it is halved.
+      auto try_dual_step = [&](Vector3<S> step, bool corrected, bool valley) {
         for (int trial_step = 0; trial_step < rules::kStepTrials; ++trial_step) {
           const Vector3<S> trial_n = stayInOctant(n, Vector3<S>(n + step)).normalized();
           const NestedNormEval<S> trial = dual_.evaluate(trial_n, true);
@@ -706,15 +746,18 @@ class ExactSolver {
               }
             }
           }
+          if (valley && std::isfinite(error) && restoreDual(trial_n, trial, error, c.error)) {
+            return true;
+          }
           step *= S(0.5);
         }
         return false;
       };
       if (!steps.convexify || steps.full_step_first) {
-        if (steps.plain.allFinite() && try_dual_step(steps.plain, true)) continue;
+        if (steps.plain.allFinite() && try_dual_step(steps.plain, true, steps.valley)) continue;
         if (!steps.convexify) break;
       }
-      if (!steps.convexified.allFinite() || !try_dual_step(steps.convexified, false)) break;
+      if (!steps.convexified.allFinite() || !try_dual_step(steps.convexified, false, false)) break;
     }
     // Back to the primal's view of the final point (its own normal, gradient and Hessian), so
     // the error reported and any primal iterations that follow are the primal's. Converged,
@@ -733,8 +776,9 @@ class ExactSolver {
 
   /// Applies a primal step (re-projected radially onto the surface) with halving; false if no
   /// trial reduced the error. A full Newton step (`corrected`) that fails gets its second-order
-  /// correction (exact_rules::kStepTrials) before it is halved.
-  bool tryStep(Candidate<S>* c, Vector3<S> step, bool corrected) {
+  /// correction, and in a `valley` every trial its restoring steps (exact_rules::kStepTrials),
+  /// before it is halved.
+  bool tryStep(Candidate<S>* c, Vector3<S> step, bool corrected, bool valley = false) {
     for (int trial_step = 0; trial_step < rules::kStepTrials; ++trial_step) {
       const Vector3<S> p = stayInOctant(c->point, Vector3<S>(c->point + step));
       if (p.allFinite() && p.squaredNorm() > S(0)) {
@@ -757,8 +801,28 @@ class ExactSolver {
             }
           }
         }
+        if (valley && std::isfinite(trial.error) && restore(trial, c)) return true;
       }
       step *= S(0.5);
+    }
+    return false;
+  }
+
+  /// The restoring steps (exact_rules::kRestoringSteps) from a refused primal trial: true, and
+  /// *c replaced, once the point they reach has a smaller error than *c.
+  bool restore(Candidate<S> trial, Candidate<S>* c) {
+    for (int k = 1; k <= rules::kRestoringSteps && iterations_ + k <= limit_; ++k) {
+      const Vector3<S> back = restoringStep(primalSystem(trial), trial.normal);
+      const Vector3<S> p = stayInOctant(trial.point, Vector3<S>(trial.point + back));
+      if (!p.allFinite() || !(p.squaredNorm() > S(0))) return false;
+      const Candidate<S> next = candidateOnRay(p);
+      if (!(next.error < trial.error)) return false;
+      if (next.error < c->error) {
+        iterations_ += k;
+        *c = next;
+        return true;
+      }
+      trial = next;
     }
     return false;
   }

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "fcl_superellipsoid/point_distance.h"
+#include "polished_reference.h"
 #include "reference_distance.h"
 #include "test_helpers.h"
 
@@ -589,6 +590,77 @@ TYPED_TEST(PointDistanceTest, NearlyRoundShapesConvergeNearTheirCentre) {
         }
       }
     }
+  }
+}
+
+// Nearly round cross-sections queried near their centre, where the cross-section's own slight
+// squareness decides which point of the ring is nearest (docs/hardening.md, finding 25):
+// ε1 a little below 1 puts the ring's lowest points at the axes' azimuths, a little above 1 at
+// the diagonals, and Q's offset from the centre, smaller than that, only tilts them. Newton's
+// straight step along the ring leaves its curved floor; the answer was a saddle between the
+// lowest points, flagged as not converged, 1e-8 × size too deep. The truth, independent of
+// src/: the long-double reference's answer and the surface points of a grid of directions
+// (every 1/32 of a turn in azimuth and latitude over the octant), each polished by Newton in
+// long double (polished_reference.h); the nearest. Each query converges, at the truth's
+// distance.
+TYPED_TEST(PointDistanceTest, NearlyRoundShapesNearTheirCentreFindTheRingsLowestPoint) {
+  using S = TypeParam;
+  const auto options = DistanceOptions<S>::of(DistanceMethod::kExact);
+  // The fuzzer's shape and query (at its radius and at 1), then other near-round exponents.
+  struct Case {
+    double radius, e1, e2;
+    std::array<double, 3> direction;
+    double depth;
+  };
+  std::vector<Case> cases;
+  const std::array<double, 3> fuzzers{-1.0406776484936953, -0.85838599831409016,
+                                      -0.85838564759454462};
+  for (double radius : {6.3180016564270747e+32, 1.0}) {
+    cases.push_back({radius, 0.99999993563100109, 1.5372549019607844, fuzzers, 1.6e-9});
+  }
+  std::mt19937 rng(25);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (double e1 : {1 - 6.4e-8, 1 - 1e-5, 1 + 1.2e-7, 1 + 1e-6}) {
+    for (double e2 : {1.537, 1.2, 0.7}) {
+      for (double depth : {2.5e-9, 1e-6}) {
+        cases.push_back({1.0, e1, e2, {u(rng), u(rng), u(rng)}, depth});
+      }
+    }
+  }
+  for (const Case& c : cases) {
+    if (std::is_same<S, float>::value && c.radius > 1e30) continue;  // beyond float's range
+    const Superellipsoid<S> shape = makeShape<S>({c.radius, c.radius, c.radius}, c.e1, c.e2);
+    SCOPED_TRACE(test::describe(shape));
+    const double target = test::exactTarget<S>(double(shape.eps1()), double(shape.eps2()));
+    const std::array<double, 3>& d = c.direction;
+    const double scale = c.depth * c.radius / std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    const Vector3<S> x(S(scale * d[0]), S(scale * d[1]), S(scale * d[2]));
+    SCOPED_TRACE("Q = " + std::to_string(x[0]) + ", " + std::to_string(x[1]) + ", " +
+                 std::to_string(x[2]));
+    const auto r = pointDistance(shape, x, options);
+    expectInvariants(shape, x, r, options.max_iterations, target);
+    EXPECT_TRUE(r.converged) << "error " << r.error << ", " << r.iterations << " iterations";
+
+    const test::ReferenceShape reference{
+        {c.radius, c.radius, c.radius}, shape.eps1(), shape.eps2()};
+    const test::ReferenceDistance gauge(reference.a, reference.e1, reference.e2);
+    const test::Vec3L q(x[0], x[1], x[2]);
+    const test::PolishedResult found = test::polishedReference(reference, q);
+    long double truth = found.ok ? std::fabs(found.distance) : INFINITY;
+    const long double step = std::acos(-1.0L) / 16;  // 1/32 of a turn
+    for (int i = 0; i <= 8; ++i) {                   // azimuth over the first octant
+      for (int j = 0; j <= 8; ++j) {                 // latitude
+        const long double az = i * step, lat = j * step;
+        const test::Vec3L direction(std::cos(lat) * std::cos(az), std::cos(lat) * std::sin(az),
+                                    std::sin(lat));
+        const long double g = gauge.gauge({direction[0], direction[1], direction[2]});
+        const test::PolishedResult p = test::polish(reference, q, direction / g);
+        if (p.ok) truth = std::min(truth, std::fabs(p.distance));
+      }
+    }
+    ASSERT_TRUE(std::isfinite(truth));
+    EXPECT_NEAR(std::abs(double(r.distance)), double(truth), target * shape.size())
+        << "nearest " << r.nearest_point.transpose();
   }
 }
 
