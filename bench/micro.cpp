@@ -3,7 +3,8 @@
 // derivatives; a new shape's first inside query, and new
 // shapes' first queries near the surface against the same on warm shapes; and the
 // batched Exact query over the same 1,024 points per iteration, on SIMD lanes and on the scalar
-// path, and over a contact band of the cloth shape (±0.05 of its surface, half inside); the
+// path, and over a contact band of the cloth shape (±0.05 of its surface, half inside), also
+// with the gradients (batchDistanceDerivatives); the
 // contact manifold of a body resting on a face against one contact of the same pair. The full
 // comparison is fse_bench; this target is for profiling one method and for tracking regressions
 // with Google Benchmark's tooling (--benchmark_filter, --benchmark_format=json, compare.py).
@@ -83,8 +84,9 @@ void runDerivatives(benchmark::State& state, const std::string& shape_class, Der
 /// per vertex compares directly with the single-query rows above.
 /// With `band`, the points are a contact band instead: within ±0.05 of the surface along the
 /// normal, about half of them inside (makeContactBand; the cloth scene's contacts).
+/// `gradients`: batchDistanceDerivatives instead (the distances with their gradients, SIMD).
 void runBatch(benchmark::State& state, const std::string& shape_class, bool vectorize,
-              bool band = false) {
+              bool band = false, bool gradients = false) {
   const Superellipsoid<double> shape = shapeClass(shape_class).make();
   const std::vector<Vector3<double>> points =
       band ? makeContactBand(shape, 1024, 0.05, 7)
@@ -94,9 +96,15 @@ void runBatch(benchmark::State& state, const std::string& shape_class, bool vect
   options.threads = 1;
   options.vectorize = vectorize;
   BatchDistanceResult<double> result;
+  BatchDerivativesResult<double> derivatives;
   for (auto _ : state) {
-    batchDistance(shape, fcl::Transform3d::Identity(), p_WV, result, options);
-    benchmark::DoNotOptimize(result.distance.data());
+    if (gradients) {
+      batchDistanceDerivatives(shape, fcl::Transform3d::Identity(), p_WV, derivatives, options);
+      benchmark::DoNotOptimize(derivatives.d_shape.data());
+    } else {
+      batchDistance(shape, fcl::Transform3d::Identity(), p_WV, result, options);
+      benchmark::DoNotOptimize(result.distance.data());
+    }
   }
   state.SetItemsProcessed(state.iterations() * 1024);
 }
@@ -316,6 +324,15 @@ void registerAll() {
                              simdInstructionSet() + "/cloth-band";
     benchmark::RegisterBenchmark(band.c_str(), [vectorize](benchmark::State& state) {
       runBatch(state, "cloth", vectorize, true);
+    });
+  }
+  // The batched gradients beside BatchSimd: the same vertices with ∂d/∂Q, ∂d/∂ξ and ∂d/∂θ.
+  for (const char* shape_class : {"round", "sharp", "pinched", "cloth", "cloth-band"}) {
+    const bool band = std::string(shape_class) == "cloth-band";
+    const std::string name =
+        std::string("BatchGradient/") + simdInstructionSet() + "/" + shape_class;
+    benchmark::RegisterBenchmark(name.c_str(), [band, shape_class](benchmark::State& state) {
+      runBatch(state, band ? "cloth" : shape_class, true, band, true);
     });
   }
 }

@@ -2,11 +2,13 @@
 // around a shape of the fixed family (shape_family.h):
 // sizes, poses, margins, warm starts, thread counts, SIMD or scalar. Every answer meets the
 // point-query contract (in the world frame), agrees with the single query for the same vertex,
-// and the contacts are exactly the vertices within the margin. docs/hardening.md → "Fuzzing".
+// and the contacts are exactly the vertices within the margin; the batched gradients agree with
+// the single query's. docs/hardening.md → "Fuzzing".
 #include <memory>
 #include <vector>
 
 #include "fcl_superellipsoid/batch_distance.h"
+#include "fcl_superellipsoid/point_derivatives.h"
 #include "fcl_superellipsoid/point_distance.h"
 #include "fuzz_input.h"
 #include "point_contract.h"
@@ -101,6 +103,46 @@ void run(FuzzedDataProvider& in) {
     } else if (fuzz::inFullAccuracyRange(*shape) && single.converged) {
       fuzz::require(std::abs(d - single.distance) <= S(4) * abs_tol + S(4) * single.error,
                     what("batch disagrees with the single query"));
+    }
+  }
+
+  // The gradients (1 input in 4): finite, the same answers, and, where the rows come from the
+  // scalar solver without a warm start, bitwise the single query's (pointDistanceDerivatives),
+  // checked on the first 4 vertices.
+  if (in.ConsumeIntegralInRange<int>(0, 3) == 0) {
+    fcl_superellipsoid::BatchDerivativesResult<S> gradients;
+    bool refused = false;
+    try {
+      fcl_superellipsoid::batchDistanceDerivatives(*shape, X_WS, p_WV, gradients, options);
+    } catch (const std::invalid_argument& e) {
+      fuzz::require(options.distance.method != DistanceMethod::kExact,
+                    std::string("Exact gradients refused: ") + e.what());
+      fuzz::requireNamedValue(e);
+      refused = true;
+    }
+    fuzz::require(refused == (options.distance.method != DistanceMethod::kExact),
+                  "gradients of another method not refused");
+    for (int i = 0; i < n && !refused; ++i) {
+      const S d = gradients.distance[i];
+      fuzz::require(std::isfinite(d) && gradients.nearest_point.col(i).allFinite() &&
+                        gradients.normal.col(i).allFinite() &&
+                        gradients.d_pose.col(i).allFinite() && gradients.d_shape.col(i).allFinite(),
+                    [&] { return "gradients not finite, vertex " + std::to_string(i); });
+      fuzz::require(gradients.d_pose.col(i).template tail<3>() == -gradients.normal.col(i),
+                    "d_pose's translation part is not -normal");
+      fuzz::require(
+          std::abs(d - result.distance[i]) <= S(8) * abs_tol || !fuzz::inFullAccuracyRange(*shape),
+          [&] { return "gradients' distance disagrees, vertex " + std::to_string(i); });
+      // (The SIMD lanes and a warm start may settle elsewhere within the tolerance.)
+      const bool scalar_row = !simd && options.warm_start_W == nullptr;
+      if (i >= 4 || !scalar_row) continue;
+      const auto single = fcl_superellipsoid::pointDistanceDerivatives(
+          *shape, X_WS, Vector3<S>(p_WV.col(i)), fcl_superellipsoid::DerivativeOrder::kGradient,
+          options.distance);
+      fuzz::require(d == single.value.distance && gradients.d_shape.col(i) == single.d_shape &&
+                        gradients.d_pose.col(i) == single.d_pose &&
+                        bool(gradients.differentiable[i]) == single.differentiable,
+                    [&] { return "gradient row != single query's, vertex " + std::to_string(i); });
     }
   }
 

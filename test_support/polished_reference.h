@@ -12,6 +12,7 @@
 // A perturbed query or shape is polished from the unperturbed answer (same basin).
 
 #include <Eigen/Dense>
+#include <Eigen/Geometry>
 #include <array>
 #include <cmath>
 
@@ -62,6 +63,18 @@ struct PolishedResult {
   Vec3L normal;          // unit outward
   bool ok;               // Newton converged to the last digits
 };
+
+/// The pose X moved by h along component k of the twist ξ = (ω, v) (point_derivatives.h):
+/// X ← exp(h·e_k)·X, a rotation about the world's axis k (k < 3) or a translation along k − 3.
+inline Eigen::Transform<long double, 3, Eigen::Isometry> twisted(
+    Eigen::Transform<long double, 3, Eigen::Isometry> X, int k, long double h) {
+  if (k < 3) {
+    X.prerotate(Eigen::AngleAxis<long double>(h, Vec3L::Unit(k)));
+  } else {
+    X.pretranslate(h * Vec3L::Unit(k - 3));
+  }
+  return X;
+}
 
 /// Newton on the optimality conditions for |q| from the first-octant point `start` (on or near
 /// the surface), reflected back into q's octant. `hold_tiny`: see polish() below.

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -66,6 +67,18 @@ template <typename S>
 long double referenceGauge(const Superellipsoid<S>& s, const Vector3<S>& x) {
   return referenceGauge({s.radii()[0], s.radii()[1], s.radii()[2]}, s.eps1(), s.eps2(),
                         {x[0], x[1], x[2]});
+}
+
+/// A random pose: a rotation from a normal quaternion, a translation of normal coordinates
+/// times `scale`.
+template <typename S>
+fcl::Transform3<S> randomPose(std::mt19937& rng, S scale) {
+  std::normal_distribution<double> g;
+  const Eigen::Quaternion<S> q(S(g(rng)), S(g(rng)), S(g(rng)), S(g(rng)));
+  fcl::Transform3<S> X = fcl::Transform3<S>::Identity();
+  X.linear() = q.normalized().toRotationMatrix();
+  X.translation() = scale * Vector3<S>(S(g(rng)), S(g(rng)), S(g(rng)));
+  return X;
 }
 
 /// Uniform angles of the parametric surface (paper Eq. 4), seeded.

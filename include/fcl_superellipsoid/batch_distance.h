@@ -20,6 +20,7 @@
 
 #include "fcl_superellipsoid/distance_options.h"
 #include "fcl_superellipsoid/export.h"
+#include "fcl_superellipsoid/point_derivatives.h"
 #include "fcl_superellipsoid/point_distance.h"
 #include "fcl_superellipsoid/superellipsoid.h"
 
@@ -74,6 +75,20 @@ struct BatchDistanceResult {
   Matrix3X<S> normal;                            ///< unit outward normal there
 };
 
+/// Per-vertex signed distances with their gradients (batchDistanceDerivatives), world frame;
+/// one column (or entry) per vertex. The derivatives are those of point_derivatives.h.
+template <typename S>
+struct BatchDerivativesResult {
+  Eigen::Matrix<S, Eigen::Dynamic, 1> distance;  ///< signed, < 0 inside
+  Matrix3X<S> nearest_point;                     ///< on the surface
+  Matrix3X<S> normal;                            ///< unit outward normal there; also ∂d/∂Q
+  Eigen::Matrix<S, 6, Eigen::Dynamic> d_pose;    ///< ∂d/∂ξ, the twist ξ = (ω, v) in W
+  Eigen::Matrix<S, 5, Eigen::Dynamic> d_shape;   ///< ∂d/∂(a1, a2, a3, ε1, ε2)
+  /// False where the vertex has several nearest points (point_derivatives.h); the gradients are
+  /// then those of the returned nearest point's branch.
+  Eigen::Matrix<bool, Eigen::Dynamic, 1> differentiable;
+};
+
 /// A vertex within the margin.
 template <typename S>
 struct VertexContact {
@@ -93,6 +108,20 @@ FSE_EXPORT void batchDistance(const Superellipsoid<S>& shape,
                               const detail::NonDeduced<Eigen::Ref<const Matrix3X<S>>>& p_WV,
                               BatchDistanceResult<S>& result,
                               const detail::NonDeduced<BatchOptions<S>>& options = {});
+
+/// Signed distance, nearest point, normal and the gradients of the distance of every vertex:
+/// the rows pointDistanceDerivatives() gives with DerivativeOrder::kGradient (the world-frame
+/// call), solved as batchDistance() solves them (on the SIMD lanes with options.vectorize, where
+/// the rows agree with the single query's to the solver's tolerance; bitwise without SIMD and
+/// warm starts). The flag's test for other nearest points reads the answers the solver's starts
+/// converged to, on the lanes as in the scalar solver. options.distance.method must be
+/// DistanceMethod::kExact.
+/// @throws std::invalid_argument as batchDistance(), or for another method, naming it.
+template <typename S>
+FSE_EXPORT void batchDistanceDerivatives(
+    const Superellipsoid<S>& shape, const detail::NonDeduced<fcl::Transform3<S>>& X_WS,
+    const detail::NonDeduced<Eigen::Ref<const Matrix3X<S>>>& p_WV,
+    BatchDerivativesResult<S>& result, const detail::NonDeduced<BatchOptions<S>>& options = {});
 
 /// Only the vertices whose signed distance is ≤ margin, in increasing index order. Vertices
 /// whose distance to the shape's bounding box already exceeds the margin are dropped after a
@@ -120,6 +149,9 @@ FSE_EXPORT void verticesWithinMargin(const Superellipsoid<S>& shape,
   extern template FSE_EXPORT void batchDistance(                                                 \
       const Superellipsoid<S>&, const fcl::Transform3<S>&, const Eigen::Ref<const Matrix3X<S>>&, \
       BatchDistanceResult<S>&, const BatchOptions<S>&);                                          \
+  extern template FSE_EXPORT void batchDistanceDerivatives(                                      \
+      const Superellipsoid<S>&, const fcl::Transform3<S>&, const Eigen::Ref<const Matrix3X<S>>&, \
+      BatchDerivativesResult<S>&, const BatchOptions<S>&);                                       \
   extern template FSE_EXPORT std::vector<VertexContact<S>> verticesWithinMargin(                 \
       const Superellipsoid<S>&, const fcl::Transform3<S>&, const Eigen::Ref<const Matrix3X<S>>&, \
       S, const BatchOptions<S>&);                                                                \

@@ -22,6 +22,14 @@ class MarginQuery(NamedTuple):
     nearest_point: FloatArray
     normal: FloatArray
 
+class DistanceGradients(NamedTuple):
+    distance: Union[float, FloatArray]
+    nearest_point: FloatArray
+    normal: FloatArray
+    d_pose: FloatArray
+    d_shape: FloatArray
+    differentiable: Union[bool, npt.NDArray[np.bool_]]
+
 class PairDistance(NamedTuple):
     distance: float
     point1: npt.NDArray[np.float64]
@@ -77,6 +85,17 @@ class Superellipsoid(Shape):
         threads: int = 0,
         vectorize: bool = True,
     ) -> PointQuery: ...
+    def distance_gradients(
+        self,
+        points: ArrayLike,
+        pose: Pose = None,
+        *,
+        method: Literal["exact"] = "exact",
+        tolerance: Optional[float] = None,
+        max_iterations: Optional[int] = None,
+        threads: int = 0,
+        vectorize: bool = True,
+    ) -> DistanceGradients: ...
     def within_margin(
         self,
         points: ArrayLike,

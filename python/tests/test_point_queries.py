@@ -262,3 +262,67 @@ def test_never_nan_on_extreme_points(shape):
         d = shape.signed_distance(p)
         assert np.all(np.isfinite(d))
     assert np.isfinite(shape.signed_distance(np.zeros(3)))
+
+
+def test_distance_gradients_of_a_posed_sphere_match_the_construction():
+    # A sphere of radius R centred at t: d = |p − t| − R, ∂d/∂p = n, the pose twist (ω, v)
+    # moves the centre by ω × t + v: ∂d/∂v = −n, ∂d/∂ω = n × N = n × t; scaling radius a_i
+    # moves the surface by n_i² along n (n in the shape's frame): ∂d/∂a_i = −n_i².
+    R, rotation, t = 1.5, random_rotation(21), np.array([0.3, -0.7, 1.1])
+    s = fse.Superellipsoid((R, R, R), (1.0, 1.0))
+    rng = np.random.default_rng(22)
+    p = t + rng.uniform(-3, 3, size=(400, 3))
+    g = s.distance_gradients(p, (rotation, t))
+    offset = p - t
+    r = np.linalg.norm(offset, axis=1)
+    n = offset / r[:, None]
+    np.testing.assert_allclose(g.distance, r - R, atol=1e-12)
+    np.testing.assert_allclose(g.normal, n, atol=1e-12)
+    np.testing.assert_allclose(g.nearest_point, t + R * n, atol=1e-12)
+    np.testing.assert_allclose(g.d_pose[:, 3:], -n, atol=1e-12)
+    np.testing.assert_allclose(g.d_pose[:, :3], np.cross(n, t), atol=1e-12)
+    n_shape = n @ rotation  # rows: Rᵀ n
+    np.testing.assert_allclose(g.d_shape[:, :3], -n_shape**2, atol=1e-10)
+    assert g.differentiable.dtype == np.bool_ and g.differentiable.all()
+    assert g.d_pose.shape == (400, 6) and g.d_shape.shape == (400, 5)
+
+
+def test_distance_gradients_exponent_columns_match_differences_of_the_distance():
+    # The exponent columns against central differences of signed_distance over new shapes
+    # (outside points: the distance is smooth there).
+    radii, exponents = np.array([1.2, 0.8, 0.5]), np.array([0.4, 1.3])
+    s = fse.Superellipsoid(radii, exponents)
+    points, _, _, _ = outside_points(s, 50, seed=23)
+    g = s.distance_gradients(points)
+    h = 1e-6
+    for k in range(2):
+        step = np.zeros(2)
+        step[k] = h
+        plus = fse.Superellipsoid(radii, exponents + step).signed_distance(points)
+        minus = fse.Superellipsoid(radii, exponents - step).signed_distance(points)
+        np.testing.assert_allclose(g.d_shape[:, 3 + k], (plus - minus) / (2 * h), atol=1e-7)
+
+
+def test_distance_gradients_of_one_point_are_its_row_and_float32_runs_in_float(shape):
+    points, _, _, _ = outside_points(shape, 20, seed=24)
+    points = np.vstack([points, 0.5 * points])  # inside too
+    g = shape.distance_gradients(points)
+    one = shape.distance_gradients(points[3])
+    assert isinstance(one.distance, float) and isinstance(one.differentiable, bool)
+    assert one.d_pose.shape == (6,) and one.d_shape.shape == (5,)
+    np.testing.assert_allclose(one.d_shape, g.d_shape[3], rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose(one.d_pose, g.d_pose[3], rtol=1e-9, atol=1e-12)
+    g32 = shape.distance_gradients(points.astype(np.float32))
+    assert g32.d_shape.dtype == np.float32 and g32.d_pose.dtype == np.float32
+    np.testing.assert_allclose(g32.d_pose, g.d_pose, atol=5e-3 * shape.size)
+
+
+def test_distance_gradients_flag_the_centre_and_refuse_other_methods():
+    s = fse.Superellipsoid((1.0, 0.8, 0.6), (0.5, 0.5))
+    g = s.distance_gradients(np.array([[0.0, 0.0, 0.0], [0.1, 0.2, 0.3]]))
+    assert list(g.differentiable) == [False, True]
+    assert np.isfinite(g.d_shape).all() and np.isfinite(g.d_pose).all()
+    with pytest.raises(ValueError, match="method must be 'exact', got 'radial'"):
+        s.distance_gradients([1.0, 2.0, 3.0], method="radial")
+    with pytest.raises(ValueError, match="1"):
+        s.distance_gradients(np.array([[1.0, np.nan, 0.0]]))

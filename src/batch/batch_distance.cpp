@@ -16,6 +16,7 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <thread>
 #include <vector>
@@ -25,6 +26,8 @@
 #include "common/invalid_argument.h"
 #include "common/tasks.h"
 #include "fcl_superellipsoid/point_distance.h"
+#include "shape/gauge_derivatives.h"
+#include "solvers/point_gradient.h"
 #include "solvers/solvers.h"
 
 namespace fcl_superellipsoid {
@@ -101,9 +104,10 @@ struct ChunkLanes {
   std::array<std::int32_t, kCapacity> status;
   std::array<std::size_t, kCapacity> source;  // the lane's index before swaps
   std::array<S, kCapacity> radial[detail::LaneArrays<S>::kRadialArrays];  // the radial starts
+  std::array<S, kCapacity> runner_up;  // the inside pass's, where asked for
 
   /// The lanes from `from` on.
-  detail::LaneArrays<S> arrays(bool with_hints, std::size_t from = 0) {
+  detail::LaneArrays<S> arrays(bool with_hints, std::size_t from = 0, bool with_runner_up = false) {
     detail::LaneArrays<S> out{{&query[0][from], &query[1][from], &query[2][from]},
                               {nullptr, nullptr, nullptr},
                               {&point[0][from], &point[1][from], &point[2][from]},
@@ -115,6 +119,7 @@ struct ChunkLanes {
     if (with_hints) {
       for (int c = 0; c < 3; ++c) out.hint[c] = &hint[c][from];
     }
+    if (with_runner_up) out.runner_up = &runner_up[from];
     return out;
   }
   /// Exchanges the inputs of lanes a and b.
@@ -140,18 +145,34 @@ struct ChunkLanes {
   }
 };
 
-/// The checks and the per-vertex solve shared by both forms.
+/// One vertex's answer, as VertexSolver::solveChunk emits it.
+template <typename S>
+struct VertexAnswer {
+  PointDistanceResult<S> result;  // nearest point and normal in the world frame
+  Vector3<S> p_SV;                // the vertex in the shape's frame
+  Vector3<S> nearest_S;           // the nearest point in the shape's frame
+  // With runner-ups (VertexSolver's `runner_ups`): the distance of the solver's runner-up
+  // (solvers.h, Query::runner_up), ∞ for none; else NaN.
+  S runner_up;
+};
+
+/// The checks and the per-vertex solve shared by the batched queries.
 template <typename S>
 class VertexSolver {
  public:
+  /// With `runner_ups` (the derivatives' flag needs them), every answer comes with the
+  /// runner-up of its solver: the scalar solver's, or the kernel's inside pass's over its starts
+  /// (outside, the problem is convex: none).
   VertexSolver(const char* function, const Superellipsoid<S>& shape, const fcl::Transform3<S>& X_WS,
-               const Eigen::Ref<const Matrix3X<S>>& p_WV, const BatchOptions<S>& options)
+               const Eigen::Ref<const Matrix3X<S>>& p_WV, const BatchOptions<S>& options,
+               bool runner_ups = false)
       : shape_(shape),
         X_WS_(X_WS),
         X_SW_(X_WS.inverse(Eigen::Isometry)),
         p_WV_(p_WV),
         options_(options),
         simd_(options.vectorize && options.distance.method == DistanceMethod::kExact),
+        runner_ups_(runner_ups),
         problem_{detail::NestedNorm<S>::gauge(shape), detail::NestedNorm<S>::support(shape),
                  shape.radii(), detail::primalIsSmoother(shape),
                  options.distance.tolerance * shape.size(), shape.size(),
@@ -173,9 +194,9 @@ class VertexSolver {
     }
   }
 
-  /// Solves the vertices [first, last) that `keep(p_SV)` accepts and calls emit(i, result) for
-  /// each, in index order (nearest point and normal in the world frame). With the SIMD kernel
-  /// for the Exact method, else one scalar query per vertex.
+  /// Solves the vertices [first, last) that `keep(p_SV)` accepts and calls emit(i, answer) for
+  /// each (a VertexAnswer), in index order. With the SIMD kernel for the Exact method, else one
+  /// scalar query per vertex.
   template <typename Keep, typename Emit>
   void solveChunk(Eigen::Index first, Eigen::Index last, const Keep& keep, const Emit& emit) {
     if (!simd_) {
@@ -240,8 +261,8 @@ class VertexSolver {
         detail::solveLanes(problem_, lanes.arrays(with_hints), outside, detail::LanePass::kOutside);
       }
       if (outside < lanes.count) {
-        detail::solveLanes(problem_, lanes.arrays(false, outside), lanes.count - outside,
-                           detail::LanePass::kInside);
+        detail::solveLanes(problem_, lanes.arrays(false, outside, runner_ups_),
+                           lanes.count - outside, detail::LanePass::kInside);
       }
     }
 
@@ -254,13 +275,16 @@ class VertexSolver {
         if (k != kOwnAnswer) ++handed_back;
         continue;
       }
-      // Back from the first octant to the vertex's own, then to W.
-      PointDistanceResult<S> r = detail::fromFirstOctant(
+      // Back from the first octant to the vertex's own, then to W. (Outside, the problem is
+      // convex: no runner-up.)
+      const bool inside = k >= outside;
+      const PointDistanceResult<S> r = detail::fromFirstOctant(
           p_SV[j], Vector3<S>(lanes.point[0][k], lanes.point[1][k], lanes.point[2][k]),
-          Vector3<S>(lanes.normal[0][k], lanes.normal[1][k], lanes.normal[2][k]), k >= outside);
-      r.nearest_point = X_WS_ * r.nearest_point;
-      r.normal = X_WS_.linear() * r.normal;
-      emit(vertex[j], r);
+          Vector3<S>(lanes.normal[0][k], lanes.normal[1][k], lanes.normal[2][k]), inside);
+      const S runner_up = !runner_ups_ ? std::numeric_limits<S>::quiet_NaN()
+                          : inside     ? lanes.runner_up[k]
+                                       : std::numeric_limits<S>::infinity();
+      emit(vertex[j], inWorld(r, p_SV[j], runner_up));
     }
     count(culled, lanes.count - handed_back, handed_back + own_answer);
   }
@@ -275,17 +299,27 @@ class VertexSolver {
   /// Vertex i in the shape's frame, exactly as pointDistance(shape, X_WS, p_WV.col(i)) has it.
   Vector3<S> inShapeFrame(Eigen::Index i) const { return X_SW_ * Vector3<S>(p_WV_.col(i)); }
 
-  /// The scalar answer for vertex i (given in the shape's frame), world frame.
-  PointDistanceResult<S> solve(Eigen::Index i, const Vector3<S>& p_SV) const {
-    PointDistanceResult<S> r =
-        options_.warm_start_W == nullptr
-            ? pointDistance(shape_, p_SV, options_.distance)
-            : detail::pointDistanceWithHint(shape_, p_SV,
-                                            Vector3<S>(X_SW_ * options_.warm_start_W->col(i)),
-                                            options_.distance);
-    r.nearest_point = X_WS_ * r.nearest_point;
-    r.normal = X_WS_.linear() * r.normal;
-    return r;
+  /// The scalar answer for vertex i (given in the shape's frame), as pointDistance() (or with
+  /// the warm start, pointDistanceWithHint()) gives it.
+  VertexAnswer<S> solve(Eigen::Index i, const Vector3<S>& p_SV) const {
+    S runner_up = std::numeric_limits<S>::quiet_NaN();
+    Vector3<S> hint;
+    if (options_.warm_start_W != nullptr) hint = X_SW_ * options_.warm_start_W->col(i);
+    const bool with_hint = options_.warm_start_W != nullptr && hint.allFinite();
+    detail::validateQuery("pointDistance", p_SV, options_.distance);  // as pointDistance() does
+    const PointDistanceResult<S> r =
+        detail::solve(shape_, p_SV, with_hint ? &hint : nullptr, options_.distance,
+                      runner_ups_ ? &runner_up : nullptr);
+    return inWorld(r, p_SV, runner_up);
+  }
+
+  /// The answer r, in the shape's frame, with its nearest point and normal taken to W.
+  VertexAnswer<S> inWorld(const PointDistanceResult<S>& r, const Vector3<S>& p_SV,
+                          S runner_up) const {
+    VertexAnswer<S> a{r, p_SV, r.nearest_point, runner_up};
+    a.result.nearest_point = X_WS_ * r.nearest_point;
+    a.result.normal = X_WS_.linear() * r.normal;
+    return a;
   }
 
   void count(std::size_t culled, std::size_t simd, std::size_t scalar) {
@@ -299,6 +333,7 @@ class VertexSolver {
   const Eigen::Ref<const Matrix3X<S>>& p_WV_;
   const BatchOptions<S>& options_;
   const bool simd_;
+  const bool runner_ups_;
   const detail::LaneProblem<S> problem_;
   std::atomic<std::size_t> culled_{0}, simd_solved_{0}, scalar_solved_{0};  // chunks add up
 };
@@ -319,10 +354,49 @@ void batchDistance(const Superellipsoid<S>& shape,
   forEachChunk(n, options, [&](Eigen::Index first, Eigen::Index last) {
     solver.solveChunk(
         first, last, [](const Vector3<S>&) { return true; },
-        [&](Eigen::Index i, const PointDistanceResult<S>& r) {
+        [&](Eigen::Index i, const VertexAnswer<S>& a) {
+          result.distance[i] = a.result.distance;
+          result.nearest_point.col(i) = a.result.nearest_point;
+          result.normal.col(i) = a.result.normal;
+        });
+  });
+  solver.reportStatistics();
+}
+
+template <typename S>
+void batchDistanceDerivatives(const Superellipsoid<S>& shape,
+                              const detail::NonDeduced<fcl::Transform3<S>>& X_WS,
+                              const detail::NonDeduced<Eigen::Ref<const Matrix3X<S>>>& p_WV,
+                              BatchDerivativesResult<S>& result,
+                              const detail::NonDeduced<BatchOptions<S>>& options) {
+  constexpr const char* kFunction = "batchDistanceDerivatives";
+  VertexSolver<S> solver(kFunction, shape, X_WS, p_WV, options, true);
+  if (options.distance.method != DistanceMethod::kExact) {
+    detail::throwInvalidArgument(kFunction,
+                                 "options.distance.method must be DistanceMethod::kExact",
+                                 std::string(toString(options.distance.method)));
+  }
+  const Eigen::Index n = p_WV.cols();
+  result.distance.resize(n);
+  result.nearest_point.resize(3, n);
+  result.normal.resize(3, n);
+  result.d_pose.resize(6, n);
+  result.d_shape.resize(5, n);
+  result.differentiable.resize(n);
+  forEachChunk(n, options, [&](Eigen::Index first, Eigen::Index last) {
+    solver.solveChunk(
+        first, last, [](const Vector3<S>&) { return true; },
+        [&](Eigen::Index i, const VertexAnswer<S>& a) {
+          const PointDistanceResult<S>& r = a.result;
           result.distance[i] = r.distance;
           result.nearest_point.col(i) = r.nearest_point;
           result.normal.col(i) = r.normal;
+          result.d_pose.col(i) = detail::poseGradient(r.normal, r.nearest_point);
+          result.d_shape.col(i) =
+              detail::shapeGradient(detail::gaugeDerivatives(shape, a.nearest_S, false));
+          result.differentiable[i] =
+              !detail::hasSeveralNearestPoints(shape.size(), a.p_SV, a.nearest_S, r.distance,
+                                               a.runner_up, options.distance.tolerance);
         });
   });
   solver.reportStatistics();
@@ -368,7 +442,8 @@ void verticesWithinMargin(const Superellipsoid<S>& shape,
           return largest <= cull &&
                  (gap.norm() <= cull || (gap / largest).norm() * largest <= cull);
         },
-        [&](Eigen::Index i, const PointDistanceResult<S>& r) {
+        [&](Eigen::Index i, const VertexAnswer<S>& a) {
+          const PointDistanceResult<S>& r = a.result;
           if (r.distance <= margin) out.push_back({i, r.distance, r.nearest_point, r.normal});
         });
   });
@@ -384,6 +459,9 @@ void verticesWithinMargin(const Superellipsoid<S>& shape,
   template void batchDistance(const Superellipsoid<S>&, const fcl::Transform3<S>&,               \
                               const Eigen::Ref<const Matrix3X<S>>&, BatchDistanceResult<S>&,     \
                               const BatchOptions<S>&);                                           \
+  template void batchDistanceDerivatives(const Superellipsoid<S>&, const fcl::Transform3<S>&,    \
+                                         const Eigen::Ref<const Matrix3X<S>>&,                   \
+                                         BatchDerivativesResult<S>&, const BatchOptions<S>&);    \
   template std::vector<VertexContact<S>> verticesWithinMargin(                                   \
       const Superellipsoid<S>&, const fcl::Transform3<S>&, const Eigen::Ref<const Matrix3X<S>>&, \
       S, const BatchOptions<S>&);                                                                \

@@ -815,13 +815,23 @@ void SolveInsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
   const Candidate<D> radial = RadialStart(d, solver, y, lanes, i, &gauge);
   const M none = hn::MaskFromVec(hn::Zero(d));
   const M work = InsideWork(d, problem, y, gauge);
-  if (hn::AllFalse(d, work)) {
+  if (hn::AllFalse(d, work)) {  // (every lane to the scalar solver)
     StoreAnswer(d, radial, none, none, lanes, i);
+    if (lanes.runner_up != nullptr) {
+      hn::StoreU(hn::Set(d, std::numeric_limits<hn::TFromD<D>>::infinity()), d,
+                 lanes.runner_up + i);
+    }
     return;
   }
 
   M all_converged;
   Candidate<D> best = solver.refine(radial, work, &all_converged);
+  // The converged answers of the starts, for the runner-up (ExactSolver::noteConverged).
+  std::array<Vec3<D>, 4> seen;
+  std::array<M, 4> seen_converged;
+  std::size_t seen_count = 0;
+  seen[seen_count] = best.point;
+  seen_converged[seen_count++] = hn::And(work, all_converged);
   InsideCertificate<D> certified(d, problem, solver, y);
   M done = certified(best, all_converged, work);
   M more = hn::AndNot(done, work);
@@ -832,6 +842,8 @@ void SolveInsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
       if (hn::AllFalse(d, more)) break;
       M converged;
       const Candidate<D> c = solver.refine(solver.candidateOnRay(start), more, &converged);
+      seen[seen_count] = c.point;
+      seen_converged[seen_count++] = hn::And(more, converged);
       all_converged = hn::And(all_converged, hn::Or(converged, done));
       // ExactSolver::isBetter between converged candidates: strictly nearer wins.
       const Vec3<D> to_c = Minus(y, c.point), to_best = Minus(y, best.point);
@@ -844,6 +856,19 @@ void SolveInsideVector(D d, const LaneProblem<hn::TFromD<D>>& problem,
   }
   StoreAnswer(d, best, InsideSolved(d, problem, solver, y, best, done, work, all_converged), none,
               lanes, i);
+  if (lanes.runner_up == nullptr) return;
+  // As ExactSolver::finish: the nearest converged answer farther than √(tolerance·size) from
+  // the kept one.
+  using V = hn::Vec<D>;
+  const V separation = hn::Mul(solver.tolerance(), hn::Set(d, problem.size));  // squared
+  V runner_up = hn::Set(d, std::numeric_limits<hn::TFromD<D>>::infinity());
+  for (std::size_t k = 0; k < seen_count; ++k) {
+    const Vec3<D> apart = Minus(seen[k], best.point), to_seen = Minus(y, seen[k]);
+    const M other = hn::And(seen_converged[k], hn::Gt(Dot(apart, apart), separation));
+    runner_up =
+        hn::IfThenElse(other, hn::Min(runner_up, hn::Sqrt(Dot(to_seen, to_seen))), runner_up);
+  }
+  hn::StoreU(runner_up, d, lanes.runner_up + i);
 }
 
 /// The classifying pass on one vector of lanes at i: G(Q) < 1, and the gauge's evaluation at Q

@@ -18,7 +18,7 @@
 //    certified global (the rolling ball, exact_rules::certifiedGlobal, on the lanes; else the
 //    Hessian ball and then the direction cover, solvers/ball_certificate.h, lane by lane, the
 //    cover on at most exact_rules::kCoverAttempts answers per lane); the nearest converged
-//    answer wins.
+//    answer wins, and the nearest other one is the runner-up (LaneArrays::runner_up).
 // A lane goes back to the scalar solver (kLaneScalar) whenever the scalar solver would do
 // more than that: a start that converges in neither formulation (the scalar solver then tries
 // further starts and, outside, the bracketed projection), an inside query near a coordinate plane
@@ -83,6 +83,10 @@ struct LaneArrays {
   /// yy, yz, zz).
   static constexpr int kRadialArrays = 10;
   S* radial[kRadialArrays];
+  /// out (inside pass), if set: the distance from Q of the nearest other converged answer among
+  /// the lane's starts (farther than √(tolerance·size) from the kept one), ∞ for none: the
+  /// scalar solver's runner-up (solvers.h, Query::runner_up) over the starts the lanes try.
+  S* runner_up = nullptr;
 };
 
 /// The kernel's passes. kClassify sets each lane's status, kLaneInside where G(Q) < 1 (the

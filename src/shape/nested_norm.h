@@ -150,10 +150,31 @@ struct NestedNorm {
     return {level1, level2, r, norm};
   }
 
+  /// u = factor·(w ⊙ scale) for w ≥ 0: factor = 1, unless a nonzero product would be subnormal
+  /// (a direction whose components are 1e300 apart, on a shape of radius 1e-11: the digits of
+  /// its small components, which the ratios below are made of, would be lost; docs/hardening.md
+  /// → finding 28). Then w is multiplied by a power of 2 first (exactly), so that the largest
+  /// product is near 1 and the others stay normal as far as their ratios to it allow.
+  struct Scaled {
+    Vector3<S> u;
+    S factor;
+  };
+  Scaled scaled(const Vector3<S>& w) const {
+    const Vector3<S> u = w.cwiseProduct(scale);
+    const S largest = u.maxCoeff();
+    bool subnormal = false;
+    for (int i = 0; i < 3; ++i) subnormal |= w[i] > S(0) && u[i] < std::numeric_limits<S>::min();
+    if (!subnormal || !(largest >= std::numeric_limits<S>::min()) || !std::isfinite(largest)) {
+      return {u, S(1)};
+    }
+    const S factor = std::ldexp(S(1), -std::ilogb(largest));
+    return {(w * factor).cwiseProduct(scale), factor};
+  }
+
   /// The gradient alone at w ≥ 0, as evaluate(w, false).gradient, for callers that wait on
   /// it (Superellipsoid::supportPoint: the halfspace and plane pairs, GJK's support).
   Vector3<S> gradient(const Vector3<S>& w) const {
-    const Vector3<S> u = w.cwiseProduct(scale);
+    const Vector3<S> u = scaled(w).u;  // (the gradient is 0-homogeneous)
     if (!(std::max(u[0], u[1]) > S(0)) && !(u[2] > S(0))) return Vector3<S>::Zero();  // the origin
     const Levels l = levels(u);
     return Vector3<S>(l.level2.pow_a * l.level1.pow_a, l.level2.pow_a * l.level1.pow_b,
@@ -164,7 +185,9 @@ struct NestedNorm {
   /// Value, gradient and (if with_hessian) Hessian at w ≥ 0, from levels().
   NestedNormEval<S> evaluate(const Vector3<S>& w, bool with_hessian) const {
     NestedNormEval<S> out;
-    const Vector3<S> u = w.cwiseProduct(scale);
+    // N is 1-homogeneous, its gradient 0-homogeneous, its Hessian (−1)-homogeneous: the value
+    // and the Hessian of the scaled argument are taken back by its factor at the end.
+    const auto [u, factor] = scaled(w);
     if (!(std::max(u[0], u[1]) > S(0)) && !(u[2] > S(0))) {
       // the origin: N is not differentiable; report zeros
       out.value = S(0);
@@ -183,7 +206,10 @@ struct NestedNorm {
     const S g_r = l.level2.pow_a, g_3 = l.level2.pow_b;  // tr^(p2−1), t3^(p2−1)
     const Vector3<S> grad_u(g_r * r1, g_r * r2, g_3);
     out.gradient = grad_u.cwiseProduct(scale);
-    if (!with_hessian) return out;
+    if (!with_hessian) {
+      if (factor != S(1)) out.value /= factor;
+      return out;
+    }
     const S t1 = r > S(0) ? u[0] / r : S(0), t2 = r > S(0) ? u[1] / r : S(0);
     const S tr = r / out.value, t3 = u[2] / out.value;
 
@@ -213,6 +239,10 @@ struct NestedNorm {
     const S c2 = (p2 - S(1)) / out.value;
     h_u(2, 2) = c2 * powMinus2(t3, g_3, p2) * (tr * g_r);
     out.hessian = scale.asDiagonal() * h_u * scale.asDiagonal();
+    if (factor != S(1)) {
+      out.value /= factor;
+      out.hessian *= factor;
+    }
     return out;
   }
 };

@@ -18,6 +18,7 @@
 #include "common/invalid_argument.h"
 #include "shape/gauge_derivatives.h"
 #include "solvers/exact_rules.h"
+#include "solvers/point_gradient.h"
 #include "solvers/solvers.h"
 
 namespace fcl_superellipsoid {
@@ -34,14 +35,6 @@ Eigen::Matrix<S, 3, 3> cross(const Vector3<S>& v) {
   Eigen::Matrix<S, 3, 3> m;
   m << S(0), -v[2], v[1], v[2], S(0), -v[0], -v[1], v[0], S(0);
   return m;
-}
-
-/// ∂d/∂ξ = (n × N, −n), N and n in the frame of the twist ξ = (ω, v) (point_derivatives.h).
-template <typename S>
-Vector6<S> poseGradient(const Vector3<S>& normal, const Vector3<S>& point) {
-  Vector6<S> out;
-  out << cross(normal) * point, -normal;
-  return out;
 }
 
 /// The pose columns (ω, v) of a point's and a normal's Jacobians from their Q Jacobians, all in
@@ -82,23 +75,10 @@ PointDistanceDerivatives<S> derivativesInShapeFrame(const Superellipsoid<S>& sha
   const S g = gauge.gradient.norm();
 
   out.d_query = n;
-  out.d_pose = poseGradient(n, point);
-  out.d_shape = gauge.d_parameters.transpose() / g;
-
-  // Ties: the solver's runner-up, and the mirror image of N across a coordinate plane that Q
-  // lies on (or nearly): its distance exceeds |d| by 4|Q_i·N_i|/(d' + |d|).
-  const S tolerance =
-      detail::exact_rules::absoluteTolerance(options.tolerance, shape.size(), q.norm());
-  const S separation = std::sqrt(tolerance * shape.size());
-  const S tie = S(4) * tolerance;
-  const S depth = std::abs(d);
-  if (q.isZero(S(0)) || runner_up - depth <= tie) out.differentiable = false;
-  for (int i = 0; i < 3; ++i) {
-    if (std::abs(point[i]) <= separation) continue;
-    const S product = S(4) * std::abs(q[i] * point[i]);
-    const S mirrored = std::sqrt(d * d + product);
-    if (product / (mirrored + depth) <= tie) out.differentiable = false;
-  }
+  out.d_pose = detail::poseGradient(n, point);
+  out.d_shape = detail::shapeGradient(gauge);
+  out.differentiable =
+      !detail::hasSeveralNearestPoints(shape.size(), q, point, d, runner_up, options.tolerance);
 
   if (!jacobians) {
     out.nearest_point_d_query.setZero();
@@ -214,7 +194,7 @@ PointDistanceDerivatives<S> pointDistanceDerivatives(
   out.value.nearest_point = X_WS * out.value.nearest_point;
   out.value.normal = r * out.value.normal;
   out.d_query = out.value.normal;
-  out.d_pose = poseGradient(out.value.normal, out.value.nearest_point);
+  out.d_pose = detail::poseGradient(out.value.normal, out.value.nearest_point);
   if (out.has_jacobians) {
     out.nearest_point_d_query = r * out.nearest_point_d_query * r.transpose();
     out.nearest_point_d_shape = r * out.nearest_point_d_shape;

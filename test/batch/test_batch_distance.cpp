@@ -21,16 +21,6 @@ template <typename S>
 class BatchDistanceTest : public ::testing::Test {};
 TYPED_TEST_SUITE(BatchDistanceTest, test::Scalars);
 
-template <typename S>
-fcl::Transform3<S> randomPose(std::mt19937& rng, S scale) {
-  std::normal_distribution<double> g;
-  const Eigen::Quaternion<S> q(S(g(rng)), S(g(rng)), S(g(rng)), S(g(rng)));
-  fcl::Transform3<S> X = fcl::Transform3<S>::Identity();
-  X.linear() = q.normalized().toRotationMatrix();
-  X.translation() = scale * Vector3<S>(S(g(rng)), S(g(rng)), S(g(rng)));
-  return X;
-}
-
 /// The hard cases of the point solver (centre, near-centre, axes, coordinate planes, on the
 /// surface, ±1e-9 × size, far) and a random cloud around the shape, in the shape's frame.
 template <typename S>
@@ -75,7 +65,7 @@ TYPED_TEST(BatchDistanceTest, ScalarPathIsBitwiseSingleQueries) {
       for (double e2 : {0.1, 1.0, 1.9}) {
         const Superellipsoid<S> shape{S(a[0]), S(a[1]), S(a[2]), S(e1), S(e2)};
         SCOPED_TRACE(test::describe(shape));
-        const fcl::Transform3<S> X_WS = randomPose<S>(rng, shape.size());
+        const fcl::Transform3<S> X_WS = test::randomPose<S>(rng, shape.size());
         const Matrix3X<S> p_WV = X_WS * hardVertices(shape, rng);
         BatchDistanceResult<S> batch;
         BatchOptions<S> options;
@@ -174,7 +164,7 @@ TYPED_TEST(BatchDistanceTest, SimdAgreesWithSingleQueriesOnTheHardCases) {
         SCOPED_TRACE(test::describe(shape));
         const Matrix3X<S> p_SV = hardVertices(shape, rng);
         expectSimdAgrees(shape, fcl::Transform3<S>::Identity(), p_SV);
-        const fcl::Transform3<S> X_WS = randomPose<S>(rng, shape.size());
+        const fcl::Transform3<S> X_WS = test::randomPose<S>(rng, shape.size());
         expectSimdAgrees(shape, X_WS, Matrix3X<S>(X_WS * p_SV));
       }
     }
@@ -386,7 +376,7 @@ TYPED_TEST(BatchDistanceTest, CompactsExactlyTheVerticesWithinTheMargin) {
     for (double e1 : {0.1, 1.0, 1.9}) {
       const Superellipsoid<S> shape{S(a[0]), S(a[1]), S(a[2]), S(e1), S(0.6)};
       SCOPED_TRACE(test::describe(shape));
-      const fcl::Transform3<S> X_WS = randomPose<S>(rng, shape.size());
+      const fcl::Transform3<S> X_WS = test::randomPose<S>(rng, shape.size());
       const Matrix3X<S> p_WV = X_WS * hardVertices(shape, rng);
       for (const bool vectorize : {true, false}) {
         for (S m : {S(-0.3), S(-1e-3), S(0), S(0.02), S(0.5), S(3)}) {
@@ -434,7 +424,7 @@ TYPED_TEST(BatchDistanceTest, ResultsDoNotDependOnTheThreadCount) {
   using S = TypeParam;
   std::mt19937 rng(3);
   const Superellipsoid<S> shape{S(3.5), S(3), S(2), S(0.4), S(0.3)};
-  const fcl::Transform3<S> X_WS = randomPose<S>(rng, S(1));
+  const fcl::Transform3<S> X_WS = test::randomPose<S>(rng, S(1));
   std::uniform_real_distribution<double> u(-4, 4);
   Matrix3X<S> p_WV(3, 20000);
   for (Eigen::Index i = 0; i < p_WV.cols(); ++i) {
@@ -472,7 +462,7 @@ TYPED_TEST(BatchDistanceTest, WarmStartsGiveTheSameAnswers) {
       for (double e2 : {0.3, 1.0, 1.6}) {
         const Superellipsoid<S> shape{S(a[0]), S(a[1]), S(a[2]), S(e1), S(e2)};
         SCOPED_TRACE(test::describe(shape));
-        const fcl::Transform3<S> X_WS = randomPose<S>(rng, shape.size());
+        const fcl::Transform3<S> X_WS = test::randomPose<S>(rng, shape.size());
         const Matrix3X<S> p_WV = X_WS * hardVertices(shape, rng);
         const Eigen::Index n = p_WV.cols();
         BatchDistanceResult<S> cold;

@@ -155,6 +155,50 @@ TEST(NestedNormTest, SubnormalExponentsGiveTheMaxNormAtTies) {
   expectMaxNormAtTies<float>(3e-45f);
 }
 
+// A direction whose components are 1e250 to 1e300 apart, on a shape of radius 1e-11 or 1e-49:
+// the products w_i·a_i of its small components are subnormal or 0, and the ratios the levels
+// are made of lost their digits (finding 28 in docs/hardening.md: a far query's support point
+// 1.8e-8 off the surface). Ground truth: the long-double closed form, whose range holds the
+// products. Value and gradient component by component (the small ones, where normal numbers,
+// are the support point's small coordinates), relative.
+TEST(NestedNormTest, SupportOfADirectionWithComponentsFarApartOnATinyShape) {
+  const double exponents[][2] = {{1, 2.2204460492503131e-16}, {1, 0.5}, {0.3, 1.2}, {1.7, 0.02}};
+  double worst = 0;
+  for (const double a : {1.4536645324972875e-11, 1.001e-49}) {
+    for (const auto& e : exponents) {
+      const Superellipsoid<double> shape(a, 0.7 * a, 1.3 * a, e[0], e[1]);
+      const detail::NestedNorm<double> support = detail::NestedNorm<double>::support(shape);
+      for (const double delta : {1e-300, 1e-250}) {
+        for (const Vector3<double>& w :
+             {Vector3<double>(0.867 * delta, 0.498 * delta, 1),
+              Vector3<double>(1, delta, 0.5 * delta), Vector3<double>(delta, 1, 0.3)}) {
+          SCOPED_TRACE(testing::Message() << "radius " << a << ", eps (" << e[0] << ", " << e[1]
+                                          << "), w " << w.transpose());
+          const detail::NestedNormEval<double> got = support.evaluate(w, false);
+          const ReferenceEval truth = referenceEval(support, w);
+          const long double value_error = std::fabs(got.value - truth.value) / truth.value;
+          EXPECT_LE(value_error, 1e-13L);
+          worst = std::max(worst, double(value_error));
+          for (int i = 0; i < 3; ++i) {
+            // (A component below double's normal range has no digits to compare.)
+            if (std::fabs(truth.gradient[i]) < std::numeric_limits<double>::min()) {
+              EXPECT_LE(std::fabs(got.gradient[i]), std::numeric_limits<double>::min());
+              continue;
+            }
+            const long double error =
+                std::fabs(got.gradient[i] - truth.gradient[i]) / std::fabs(truth.gradient[i]);
+            EXPECT_LE(error, 1e-12L) << "gradient component " << i << ": " << got.gradient[i]
+                                     << ", truth " << double(truth.gradient[i]);
+            worst = std::max(worst, double(error));
+            EXPECT_EQ(support.gradient(w)[i], got.gradient[i]);  // supportPoint's path
+          }
+        }
+      }
+    }
+  }
+  RecordProperty("worst_relative_error", testing::PrintToString(worst));
+}
+
 TEST(NestedNormTest, DualHessianIsTheInverseShapeOperator) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> radius(0.2, 2.0), exponent(0.3, 1.9), angle(0.15, 1.42);

@@ -192,12 +192,7 @@ void checkConfig(const Config& c, const Eigen::Isometry3d& pose, double gradient
     const long double step = k < 3 ? 1e-6L : 1e-6L * size;
     dpose.col(k) = centralDifference(
         [&](long double h) {
-          Eigen::Transform<long double, 3, Eigen::Isometry> moved = xl;
-          if (k < 3) {
-            moved.prerotate(Eigen::AngleAxis<long double>(h, Vec3L::Unit(k)));
-          } else {
-            moved.pretranslate(h * Vec3L::Unit(k - 3));
-          }
+          const Eigen::Transform<long double, 3, Eigen::Isometry> moved = twisted(xl, k, h);
           const PolishedResult r = polish(ref, moved.inverse() * q_wl, base.nearest);
           Probe p;
           p << r.distance, moved * r.nearest, moved.linear() * r.normal;

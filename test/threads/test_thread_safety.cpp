@@ -133,6 +133,27 @@ TYPED_TEST(ThreadSafetyTest, BatchedQueriesFromSeveralThreads) {
   expectEveryThreadGets(expected, answers);
 }
 
+// Batched gradients from several threads at once, each itself threaded: the same rows.
+TYPED_TEST(ThreadSafetyTest, BatchedGradientsFromSeveralThreads) {
+  using S = TypeParam;
+  const Superellipsoid<S> shape(S(1), S(0.9), S(0.7), S(0.3), S(0.6));
+  const fcl::Transform3<S> X_WS(fcl::Translation3<S>(S(0.1), S(-0.2), S(0.05)));
+  const Matrix3X<S> points = randomPoints<S>(3000, S(1.2), 23);
+  BatchOptions<S> options;
+  options.threads = 2;
+  options.min_parallel_vertices = 1;
+  auto answers = [&] {
+    BatchDerivativesResult<S> g;
+    batchDistanceDerivatives<S>(shape, X_WS, points, g, options);
+    std::vector<S> out(g.d_shape.data(), g.d_shape.data() + g.d_shape.size());
+    out.insert(out.end(), g.distance.data(), g.distance.data() + g.distance.size());
+    for (Eigen::Index i = 0; i < g.differentiable.size(); ++i)
+      out.push_back(S(g.differentiable[i]));
+    return out;
+  };
+  expectEveryThreadGets(answers(), answers);
+}
+
 // The same FCL objects (a shape, a mesh, a sphere) queried from several threads, through the
 // front end and through FCL's own calls with the solver.
 TYPED_TEST(ThreadSafetyTest, ManyThreadsQueryTheSameFclObjects) {
