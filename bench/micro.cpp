@@ -5,12 +5,16 @@
 // batched Exact query over the same 1,024 points per iteration, on SIMD lanes and on the scalar
 // path, and over a contact band of the cloth shape (±0.05 of its surface, half inside), also
 // with the gradients (batchDistanceDerivatives); the
-// contact manifold of a body resting on a face against one contact of the same pair. The full
+// contact manifold of a body resting on a face against one contact of the same pair; a pair's
+// signed distance against the same with its gradient. The full
 // comparison is fse_bench; this target is for profiling one method and for tracking regressions
 // with Google Benchmark's tooling (--benchmark_filter, --benchmark_format=json, compare.py).
 
 #include <benchmark/benchmark.h>
 #include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/ellipsoid.h>
 #include <fcl/geometry/shape/halfspace.h>
 
 #include <cmath>
@@ -23,6 +27,7 @@
 #include "fcl_superellipsoid/batch_distance.h"
 #include "fcl_superellipsoid/contact_manifold.h"
 #include "fcl_superellipsoid/fcl_integration.h"
+#include "fcl_superellipsoid/pair_derivatives.h"
 #include "fcl_superellipsoid/point_derivatives.h"
 #include "fcl_superellipsoid/point_distance.h"
 #include "methods.h"
@@ -253,6 +258,67 @@ void runManifold(benchmark::State& state, ManifoldPartner partner, ManifoldCall 
   state.SetItemsProcessed(state.iterations());
 }
 
+/// A pair's signed distance alone (the front end, signed, with the witnesses) against the same
+/// with its gradient (pairDistanceDerivatives), over 64 poses of a superellipsoid (ε = (0.6,
+/// 1.2), a rounded box-like body) around a partner, half of them overlapping (a quarter of the
+/// size deep at most), half apart (up to half the size).
+enum class PairPartner { kSuperellipsoid, kEllipsoid, kBox, kCapsule, kCylinder };
+
+void runPairGradient(benchmark::State& state, PairPartner partner, bool gradient) {
+  const auto body = std::make_shared<Superellipsoid<double>>(0.5, 0.4, 0.3, 0.6, 1.2);
+  std::shared_ptr<fcl::CollisionGeometry<double>> other;
+  switch (partner) {
+    case PairPartner::kSuperellipsoid:
+      other = std::make_shared<Superellipsoid<double>>(0.6, 0.5, 0.4, 0.3, 0.8);
+      break;
+    case PairPartner::kEllipsoid:
+      other = std::make_shared<fcl::Ellipsoid<double>>(0.6, 0.5, 0.4);
+      break;
+    case PairPartner::kBox:
+      other = std::make_shared<fcl::Box<double>>(1.2, 1.0, 0.8);
+      break;
+    case PairPartner::kCapsule:
+      other = std::make_shared<fcl::Capsule<double>>(0.3, 0.8);
+      break;
+    case PairPartner::kCylinder:
+      other = std::make_shared<fcl::Cylinder<double>>(0.4, 0.8);
+      break;
+  }
+  std::mt19937 rng(53);
+  std::normal_distribution<double> g;
+  std::uniform_real_distribution<double> gap(-0.25, 0.5);
+  const fcl::Transform3d X_WO = fcl::Transform3d::Identity();
+  std::vector<fcl::Transform3d> poses;
+  while (poses.size() < 64) {
+    fcl::Transform3d X = fcl::Transform3d::Identity();
+    X.linear() = Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
+    const Vector3<double> direction = Vector3<double>(g(rng), g(rng), g(rng)).normalized();
+    // Slide the body along `direction` until the pair's distance is the drawn gap (within 1e-3).
+    const double target = gap(rng) * body->size();
+    double t = 2.0;
+    for (int k = 0; k < 30; ++k) {
+      X.translation() = t * direction;
+      const double d = pairDistanceDerivatives(*body, X, *other, X_WO).distance;
+      t += target - d;
+    }
+    poses.push_back(X);
+  }
+  fcl::CollisionObjectd a(body), b(other, X_WO);
+  fcl::DistanceRequestd request(true, true);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    if (gradient) {
+      benchmark::DoNotOptimize(pairDistanceDerivatives(*body, poses[i], *other, X_WO));
+    } else {
+      a.setTransform(poses[i]);
+      fcl::DistanceResultd result;
+      benchmark::DoNotOptimize(fcl_superellipsoid::distance(&a, &b, request, result));
+    }
+    i = (i + 1) & 63;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
 void registerAll() {
   const std::vector<
       std::pair<std::string, std::function<std::unique_ptr<Method>(const BenchShape&)>>>
@@ -305,6 +371,19 @@ void registerAll() {
                                    [partner = partner, call = call](benchmark::State& state) {
                                      runManifold(state, partner, call);
                                    });
+    }
+  }
+  for (const auto& [name, partner] :
+       {std::pair{"superellipsoid", PairPartner::kSuperellipsoid},
+        std::pair{"ellipsoid", PairPartner::kEllipsoid}, std::pair{"box", PairPartner::kBox},
+        std::pair{"capsule", PairPartner::kCapsule},
+        std::pair{"cylinder", PairPartner::kCylinder}}) {
+    for (const bool gradient : {false, true}) {
+      benchmark::RegisterBenchmark(
+          (std::string(gradient ? "PairGradient/" : "PairDistance/") + name).c_str(),
+          [partner = partner, gradient](benchmark::State& state) {
+            runPairGradient(state, partner, gradient);
+          });
     }
   }
   for (const bool fresh : {true, false}) {

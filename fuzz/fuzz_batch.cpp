@@ -5,6 +5,8 @@
 // and the contacts are exactly the vertices within the margin; the batched gradients agree with
 // the single query's. docs/hardening.md → "Fuzzing".
 #include <memory>
+#include <optional>
+#include <sstream>
 #include <vector>
 
 #include "fcl_superellipsoid/batch_distance.h"
@@ -22,6 +24,16 @@ using fcl_superellipsoid::DistanceMethod;
 using fcl_superellipsoid::Matrix3X;
 using fcl_superellipsoid::Superellipsoid;
 using fuzz::Vector3;
+
+/// The vertices whose batched answers are compared with the single query's: all of a cloud's
+/// first 48, then every 16th, the last, and those on either side of the chunk boundary at 256.
+/// A large cloud deep inside a box-like shape costs the scalar centre search per vertex and per
+/// call; the single queries of all 300 vertices made a third of such an input's time
+/// (docs/hardening.md → "Fuzzing"). Every vertex is still answered by each batched call and
+/// checked against the point-query contract.
+bool comparedWithTheSingleQuery(int i, int n) {
+  return i < 48 || i % 16 == 0 || i == n - 1 || i == 255 || i == 256;
+}
 
 template <typename S>
 void run(FuzzedDataProvider& in) {
@@ -77,14 +89,23 @@ void run(FuzzedDataProvider& in) {
   for (int i = 0; i < n; ++i) {
     const S d = result.distance[i];
     const Vector3<S> N = result.nearest_point.col(i), normal = result.normal.col(i);
-    const auto single =
-        fcl_superellipsoid::pointDistance(*shape, X_WS, Vector3<S>(p_WV.col(i)), options.distance);
+    const bool compared = comparedWithTheSingleQuery(i, n);
+    std::optional<fcl_superellipsoid::PointDistanceResult<S>> single;
+    if (compared) {
+      single = fcl_superellipsoid::pointDistance(*shape, X_WS, Vector3<S>(p_WV.col(i)),
+                                                 options.distance);
+    }
     // (The single answer's nearest point and normal are printed in the world frame.)
     const auto what = [&](const char* broken) {  // the message, formatted only if it broke
       return [&, broken] {
+        const Vector3<S> p_SV = X_SW * p_WV.col(i);
+        std::ostringstream where;
+        where.precision(std::numeric_limits<S>::max_digits10);
+        where << "query (" << p_SV.transpose() << ")";
         return std::string(broken) + ": vertex " + std::to_string(i) + ", batch distance " +
-               std::to_string(d) + " (simd " + std::to_string(simd) + "); single: " +
-               fuzz::describe(*shape, Vector3<S>(X_SW * p_WV.col(i)), options.distance, single);
+               std::to_string(d) + " (simd " + std::to_string(simd) + "); " +
+               (single ? "single: " + fuzz::describe(*shape, p_SV, options.distance, *single)
+                       : where.str());
       };
     };
     fuzz::require(std::isfinite(d) && N.allFinite() && normal.allFinite(), what("not finite"));
@@ -97,11 +118,12 @@ void run(FuzzedDataProvider& in) {
                   what("nearest point not on the surface"));
     fuzz::require(std::abs((Vector3<S>(p_WV.col(i)) - N).norm() - std::abs(d)) <= S(4) * abs_tol,
                   what("|Q - N| != |distance|"));
+    if (!compared) continue;
     if (!simd && options.warm_start_W == nullptr) {
-      fuzz::require(d == single.distance && N == single.nearest_point,
+      fuzz::require(d == single->distance && N == single->nearest_point,
                     what("scalar batch != single query"));
-    } else if (fuzz::inFullAccuracyRange(*shape) && single.converged) {
-      fuzz::require(std::abs(d - single.distance) <= S(4) * abs_tol + S(4) * single.error,
+    } else if (fuzz::inFullAccuracyRange(*shape) && single->converged) {
+      fuzz::require(std::abs(d - single->distance) <= S(4) * abs_tol + S(4) * single->error,
                     what("batch disagrees with the single query"));
     }
   }

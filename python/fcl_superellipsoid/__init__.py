@@ -20,6 +20,7 @@ from ._core import (
     Halfspace,
     MarginQuery,
     PairDistance,
+    PairDistanceGradients,
     Plane,
     PointQuery,
     Shape,
@@ -28,6 +29,7 @@ from ._core import (
     Triangle,
     collide,
     distance,
+    distance_gradients,
     simd_instruction_set,
 )
 
@@ -43,6 +45,7 @@ __all__ = [
     "Halfspace",
     "MarginQuery",
     "PairDistance",
+    "PairDistanceGradients",
     "Plane",
     "PointQuery",
     "Shape",
@@ -51,5 +54,6 @@ __all__ = [
     "Triangle",
     "collide",
     "distance",
+    "distance_gradients",
     "simd_instruction_set",
 ]

@@ -36,6 +36,17 @@ class PairDistance(NamedTuple):
     point2: npt.NDArray[np.float64]
     normal: npt.NDArray[np.float64]
 
+class PairDistanceGradients(NamedTuple):
+    distance: float
+    point1: npt.NDArray[np.float64]
+    point2: npt.NDArray[np.float64]
+    normal: npt.NDArray[np.float64]
+    d_pose1: npt.NDArray[np.float64]
+    d_pose2: npt.NDArray[np.float64]
+    d_shape1: Optional[npt.NDArray[np.float64]]
+    d_shape2: Optional[npt.NDArray[np.float64]]
+    differentiable: bool
+
 class Contact(NamedTuple):
     position: npt.NDArray[np.float64]
     normal: npt.NDArray[np.float64]
@@ -158,6 +169,9 @@ class Plane(Shape):
     def __init__(self, normal: ArrayLike, offset: float) -> None: ...
 
 def distance(shape1: Shape, pose1: Pose, shape2: Shape, pose2: Pose) -> PairDistance: ...
+def distance_gradients(
+    shape1: Shape, pose1: Pose, shape2: Shape, pose2: Pose
+) -> PairDistanceGradients: ...
 def collide(
     shape1: Shape, pose1: Pose, shape2: Shape, pose2: Pose, max_contacts: int = 1
 ) -> list[Contact]: ...

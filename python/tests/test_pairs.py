@@ -132,3 +132,70 @@ def test_bad_pair_calls_raise():
         fse.distance(s, None, fse.Sphere(1.0), np.ones((4, 4)))
     with pytest.raises(ValueError, match="max_contacts must be >= 1"):
         fse.collide(s, None, fse.Sphere(1.0), None, max_contacts=0)
+
+
+def test_pair_gradients_of_two_spheres_are_the_closed_form():
+    """A round superellipsoid (a sphere of radius r1) and a Sphere of radius r2, apart and
+    overlapping: d = |c2 - c1| - r1 - r2, n = (c2 - c1)/|c2 - c1|; a twist (omega, v) of pose k
+    moves its witness p_k, so d_pose2 = (p2 x n, n) and d_pose1 = (n x p1, -n); a radius a_i of
+    the superellipsoid moves its surface at the witness by n_i^2 (local frame), so
+    d_shape1[:3] = -n_local**2."""
+    r1, r2 = 0.7, 0.4
+    ball = fse.Superellipsoid((r1, r1, r1), (1.0, 1.0))
+    rng = np.random.default_rng(53)
+    for i, u in enumerate(unit_directions(10, seed=33)):
+        R1 = random_rotation(40 + i)
+        c1 = rng.normal(size=3)
+        reach = (r1 + r2) * (0.6 + 0.9 * i / 10)  # overlapping for the first few
+        c2 = c1 + reach * u
+        g = fse.distance_gradients(ball, (R1, c1), fse.Sphere(r2), (np.eye(3), c2))
+        assert g.distance == pytest.approx(reach - r1 - r2, abs=1e-9)
+        np.testing.assert_allclose(g.normal, u, atol=1e-9)
+        p1, p2 = c1 + r1 * u, c2 - r2 * u
+        np.testing.assert_allclose(g.point1, p1, atol=1e-9)
+        np.testing.assert_allclose(g.point2, p2, atol=1e-9)
+        np.testing.assert_allclose(g.d_pose2, np.concatenate([np.cross(p2, u), u]), atol=1e-9)
+        np.testing.assert_allclose(g.d_pose1, np.concatenate([np.cross(u, p1), -u]), atol=1e-9)
+        n_local = R1.T @ u
+        np.testing.assert_allclose(g.d_shape1[:3], -n_local**2, atol=1e-8)
+        assert np.all(np.isfinite(g.d_shape1))
+        assert g.d_shape2 is None
+        assert g.differentiable
+
+
+def test_pair_gradients_follow_the_order_of_the_shapes():
+    a = fse.Superellipsoid((1.0, 0.7, 0.5), (0.5, 1.5))
+    b = fse.Superellipsoid((0.6, 0.6, 0.9), (1.2, 0.3))
+    pose_a = (random_rotation(7), np.array([0.1, 0.2, 0.3]))
+    pose_b = (random_rotation(8), np.array([1.2, -0.4, 0.9]))
+    ab = fse.distance_gradients(a, pose_a, b, pose_b)
+    ba = fse.distance_gradients(b, pose_b, a, pose_a)
+    assert ab.distance == pytest.approx(ba.distance, abs=1e-9)
+    np.testing.assert_allclose(ab.normal, -ba.normal, atol=1e-7)
+    np.testing.assert_allclose(ab.point1, ba.point2, atol=1e-7)
+    np.testing.assert_allclose(ab.d_pose1, ba.d_pose2, atol=1e-6)
+    np.testing.assert_allclose(ab.d_shape1, ba.d_shape2, atol=1e-6)
+    np.testing.assert_allclose(ab.d_shape2, ba.d_shape1, atol=1e-6)
+    # A rigid motion of both changes nothing: the two pose gradients cancel.
+    np.testing.assert_allclose(ab.d_pose1 + ab.d_pose2, np.zeros(6), atol=1e-8)
+    # With a box second, its parameters have no gradient.
+    g = fse.distance_gradients(a, pose_a, fse.Box(0.4, 0.5, 0.6), pose_b)
+    assert g.d_shape2 is None and g.d_shape1.shape == (5,)
+
+
+def test_pair_gradients_flag_coincident_centres():
+    a = fse.Superellipsoid((1.0, 0.7, 0.5), (0.5, 1.5))
+    centre = np.array([0.3, -0.2, 0.1])
+    g = fse.distance_gradients(a, (random_rotation(3), centre), fse.Box(0.4, 0.5, 0.6),
+                               (random_rotation(4), centre))
+    assert g.distance < 0
+    assert not g.differentiable
+    assert np.all(np.isfinite(g.d_pose1)) and np.all(np.isfinite(g.d_pose2))
+    g = fse.distance_gradients(a, (random_rotation(3), centre), fse.Box(0.4, 0.5, 0.6),
+                               (random_rotation(4), centre + [0.4, 0.3, 0.0]))
+    assert g.differentiable
+
+
+def test_pair_gradients_refuse_two_other_shapes():
+    with pytest.raises(TypeError, match="Superellipsoid"):
+        fse.distance_gradients(fse.Sphere(1.0), None, fse.Box(1.0, 1.0, 1.0), None)

@@ -34,17 +34,6 @@ void checkOptions(const char* where, const ManifoldOptions<S>& options) {
   }
 }
 
-/// FCL's name of a node type, for the refusal.
-std::string nodeTypeName(fcl::NODE_TYPE t) {
-  static const char* const kNames[] = {
-      "BV_UNKNOWN",  "BV_AABB",        "BV_OBB",         "BV_RSS",        "BV_kIOS",
-      "BV_OBBRSS",   "BV_KDOP16",      "BV_KDOP18",      "BV_KDOP24",     "GEOM_BOX",
-      "GEOM_SPHERE", "GEOM_ELLIPSOID", "GEOM_CAPSULE",   "GEOM_CONE",     "GEOM_CYLINDER",
-      "GEOM_CONVEX", "GEOM_PLANE",     "GEOM_HALFSPACE", "GEOM_TRIANGLE", "GEOM_OCTREE"};
-  const int i = static_cast<int>(t);
-  return i >= 0 && i < int(sizeof(kNames) / sizeof(kNames[0])) ? kNames[i] : std::to_string(i);
-}
-
 }  // namespace
 
 template <typename S>
@@ -102,13 +91,7 @@ ContactManifold<S> manifold(const Superellipsoid<S>& shape, const fcl::Transform
   const detail::PairKind<S>* kind = detail::findPairKind<S>(pair.other_type);
   std::optional<detail::PairHit<S>> hit;
   if (kind != nullptr && kind->region != nullptr) hit = kind->answer(pair, kWhere);
-  if (!hit) {
-    detail::throwInvalidArgument(
-        kWhere,
-        "the other geometry must be a Superellipsoid, fcl::Sphere, Ellipsoid, Box, Convex, "
-        "TriangleP, Capsule, Cylinder, Cone, Halfspace or Plane (its node type)",
-        detail::nodeTypeName(other.getNodeType()));
-  }
+  if (!hit) detail::throwUnsupportedPartner(kWhere, other);
   return detail::pairManifold(pair, *kind, *hit, options, warm);
 }
 

@@ -224,6 +224,30 @@ const PairKind<S>* findPairKind(fcl::NODE_TYPE t) {
   return &kPairKinds<S>[kRowOf[t]];
 }
 
+/// FCL's name of a node type, for a refusal.
+inline std::string nodeTypeName(fcl::NODE_TYPE t) {
+  static const char* const kNames[] = {
+      "BV_UNKNOWN",  "BV_AABB",        "BV_OBB",         "BV_RSS",        "BV_kIOS",
+      "BV_OBBRSS",   "BV_KDOP16",      "BV_KDOP18",      "BV_KDOP24",     "GEOM_BOX",
+      "GEOM_SPHERE", "GEOM_ELLIPSOID", "GEOM_CAPSULE",   "GEOM_CONE",     "GEOM_CYLINDER",
+      "GEOM_CONVEX", "GEOM_PLANE",     "GEOM_HALFSPACE", "GEOM_TRIANGLE", "GEOM_OCTREE"};
+  const int i = static_cast<int>(t);
+  return i >= 0 && i < int(sizeof(kNames) / sizeof(kNames[0])) ? kNames[i] : std::to_string(i);
+}
+
+/// The refusal of a partner that is not one of the shape kinds above (a mesh, an octree, a
+/// user's geometry), by the calls that answer one pair of shapes (contact_manifold.h,
+/// pair_derivatives.h).
+template <typename S>
+[[noreturn]] void throwUnsupportedPartner(const char* where,
+                                          const fcl::CollisionGeometry<S>& other) {
+  throwInvalidArgument(where,
+                       "the other geometry must be a Superellipsoid, fcl::Sphere, Ellipsoid, Box, "
+                       "Convex, TriangleP, Capsule, Cylinder, Cone, Halfspace or Plane (its node "
+                       "type)",
+                       nodeTypeName(other.getNodeType()));
+}
+
 }  // namespace detail
 }  // namespace fcl_superellipsoid
 

@@ -93,6 +93,41 @@ class DepthCandidates {
     return end;
   }
 
+  /// A point w of the other shape inside the superellipsoid, seen from it as `escape`
+  /// (offerPoints). Where w does not support the other shape along its own escape direction (F
+  /// there is above h_A(v) − v·w), f_w(v) = h_A(v) − v·w has other local minima, and one in w's
+  /// region (where w supports the other shape along −v: `supports(v)`) can be F's:
+  ///  - near a mirror plane of the superellipsoid they mirror the escape direction across it
+  ///    (without them a rounded shape's overlap with a triangle came out too deep);
+  ///  - where the superellipsoid is box-like, f_w has a local minimum near each of its axis
+  ///    directions (the depth below each flat face), and one in w's region can be F's minimum
+  ///    while the escape direction lies below another face, outside it (a rounded shape's
+  ///    overlap with a triangle, and a box-like one's with a capsule about its centre, came
+  ///    out too deep).
+  /// So f_w descends from the three mirror images and from each axis direction in w's region.
+  /// `stop()` is asked after each descent (a certificate): true ends them. Returns whether it
+  /// did.
+  template <typename Supports, typename Stop>
+  bool offerInsidePointDescents(const Vector3<S>& w, const Escape& escape, S tolerance,
+                                Supports supports, Stop stop) {
+    if (!(escape.distance < S(0)) || !(escape.f > -escape.distance + tolerance)) return false;
+    const SupportMap<S> point = SupportMap<S>::ofPoint(w);
+    const Eigen::Matrix<S, 3, 3> R = pair_.X_WS->linear();
+    for (int k = 0; k < 3; ++k) {
+      Vector3<S> local = R.transpose() * escape.direction;
+      local[k] = -local[k];
+      offerDescent(point, Vector3<S>(R * local));
+      if (stop()) return true;
+    }
+    for (int k = 0; k < 6; ++k) {
+      const Vector3<S> axis = R.col(k % 3) * (k < 3 ? S(1) : S(-1));
+      if (!supports(axis)) continue;
+      offerDescent(point, axis);
+      if (stop()) return true;
+    }
+    return false;
+  }
+
   /// A one-parameter family of directions v(θ) (unit), θ over [from, to], with derivative(θ, v, a)
   /// the derivative of the function to minimise over it, given the superellipsoid's support
   /// point a at v: samples at most `spacing` apart, each offered, then the stationary point in

@@ -464,14 +464,6 @@ S arcLowerBound(const EdgeArc<S>& arc, const Vector3<S>& d) {
   return low;
 }
 
-/// The world direction v mirrored across the superellipsoid's k-th coordinate plane.
-template <typename S>
-Vector3<S> mirrored(const ShapePair<S>& pair, const Vector3<S>& v, int k) {
-  Vector3<S> local = pair.X_WS->linear().transpose() * v;
-  local[k] = -local[k];
-  return pair.X_WS->linear() * local;
-}
-
 /// `overlap`'s candidates that need no start, the faces' normals (in `depth`): the best if the
 /// balls certify it (rolling_certificate.h).
 template <typename S, typename Depth>
@@ -507,31 +499,19 @@ PairHit<S> overlap(const ShapePair<S>& pair, const Polytope<S>& p, const PairHit
   if (depth.certified(outside, tolerance)) return depth.best();
   // Each descent, and each edge's arc, may give a candidate the balls certify; then the rest is
   // not needed.
+  const auto certified = [&] { return depth.certified(outside, tolerance); };
   for (std::size_t i = 0; i < p.vertices.size(); ++i) {
     if (!(escapes[i].distance < S(0))) continue;
-    const SupportMap<S> vertex = SupportMap<S>::ofPoint(p.vertices[i]);
-    depth.offerDescent(vertex, Vector3<S>(centroid - p.vertices[i]));
-    if (depth.certified(outside, tolerance)) return depth.best();
-    // Where the vertex does not support the polytope along its own escape direction, F there is
-    // above h_A(v) − v·w, whose other local minima can be F's: near a mirror plane of the
-    // superellipsoid they mirror the escape direction across it (without them a rounded shape's
-    // overlap with a triangle comes out too deep: RoundedOverlapsAgainstTheEnumeratedDepth).
-    if (escapes[i].f > -escapes[i].distance + tolerance) {
-      for (int k = 0; k < 3; ++k) {
-        depth.offerDescent(vertex, mirrored(pair, escapes[i].direction, k));
-        if (depth.certified(outside, tolerance)) return depth.best();
-      }
-      // Where A is box-like, f_b has a local minimum near each of its axis directions (the
-      // depth below each flat face); one in b's region can be F's minimum while the escape
-      // direction lies below another face, outside it (a rounded shape's overlap with a
-      // triangle would come out too deep: RoundedOverlapsAgainstTheEnumeratedDepth). So f_b also
-      // descends from each of A's six axis directions that lies in b's region.
-      for (int k = 0; k < 6; ++k) {
-        const Vector3<S> axis = pair.X_WS->linear().col(k % 3) * (k < 3 ? S(1) : S(-1));
-        if (p.support(Vector3<S>(-axis)) > -axis.dot(p.vertices[i]) + tolerance) continue;
-        depth.offerDescent(vertex, axis);
-        if (depth.certified(outside, tolerance)) return depth.best();
-      }
+    const Vector3<S>& w = p.vertices[i];
+    depth.offerDescent(SupportMap<S>::ofPoint(w), Vector3<S>(centroid - w));
+    if (certified()) return depth.best();
+    // The other local minima of h_A(v) − v·w in w's region (RoundedOverlapsAgainstTheEnumerated
+    // Depth found them).
+    const auto supports = [&](const Vector3<S>& v) {
+      return !(p.support(Vector3<S>(-v)) > -v.dot(w) + tolerance);
+    };
+    if (depth.offerInsidePointDescents(w, escapes[i], tolerance, supports, certified)) {
+      return depth.best();
     }
   }
   const S inscribed = inscribedRadius(*pair.shape);

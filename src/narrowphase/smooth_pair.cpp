@@ -28,6 +28,36 @@ Vector3<S> sphereDirection(int i, int n) {
   return Vector3<S>(S(r * std::cos(golden * i)), S(r * std::sin(golden * i)), S(z));
 }
 
+/// The witnesses at Newton's last direction v, moved to first order to where they are at the
+/// minimiser v* = v + δ: a = ∇h_A(v) and b = ∇h_B(−v) move by H_A·δ and −H_B·δ (H the support
+/// functions' Hessians), and at v* their difference is along v*, so δ solves
+/// P(H_A + H_B)P·δ = −P(a − b) in the tangent plane (P its projector). Newton stops within
+/// 1e-9 rad of v*, but beside a nearly flat face (a box-like superellipsoid's face centre, where
+/// the support function's Hessian, the radius of curvature, grows without bound) a support
+/// point moves by that much times the radius: the witnesses' difference was 3e-5 off the normal
+/// on one such pair, which the distance does not see (F is flat at its minimum) and the
+/// gradient's rotation parts do (pair_derivatives.h). The distance and the normal are kept.
+template <typename S>
+void consistentWitnesses(const SupportMap<S>& A, const SupportMap<S>& B, const Probe<S>& p,
+                         Vector3<S>& on_a, Vector3<S>& on_b) {
+  const SupportEval<S> ea = A.evaluate(p.v, true), eb = B.evaluate(Vector3<S>(-p.v), true);
+  on_a = ea.point;
+  on_b = eb.point;
+  const auto [t1, t2] = tangents(p.v);
+  const Vector3<S> gap = ea.point - eb.point;
+  const Eigen::Matrix<S, 3, 3> K3 = ea.hessian + eb.hessian;
+  const S k11 = t1.dot(K3 * t1), k22 = t2.dot(K3 * t2), k12 = t1.dot(K3 * t2);
+  const S g1 = t1.dot(gap), g2 = t2.dot(gap);
+  const S det = k11 * k22 - k12 * k12;
+  const S x1 = -(k22 * g1 - k12 * g2) / det, x2 = -(k11 * g2 - k12 * g1) / det;
+  if (!(det > S(0)) || !std::isfinite(x1) || !std::isfinite(x2)) return;
+  const Vector3<S> delta = x1 * t1 + x2 * t2;
+  const Vector3<S> a = ea.point + ea.hessian * delta, b = eb.point - eb.hessian * delta;
+  if (!a.allFinite() || !b.allFinite()) return;
+  on_a = a;
+  on_b = b;
+}
+
 }  // namespace
 
 /// The answer for A and B; where they overlap, `rolling_radius()` gives ρ_A + ρ_B and
@@ -61,8 +91,7 @@ SmoothPairAnswer<S> solveSmoothPair(const SupportMap<S>& A, const SupportMap<S>&
   }
   SmoothPairAnswer<S> out;
   out.distance = -best.f;
-  out.on_a = best.a;
-  out.on_b = best.b;
+  consistentWitnesses(A, B, best, out.on_a, out.on_b);
   out.normal = best.v;
   return out;
 }

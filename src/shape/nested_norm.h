@@ -62,13 +62,16 @@ inline PowersLog2<S> pnorm2PowersLog2(bool a_is_max, S ratio, S log2_ratio, S p,
   const S pow_m = std::exp2((inv_p - S(1)) * log2_one_plus_q);
   S pow_lo = S(0);
   if (ratio > S(0)) {
-    // q ≥ min implies t ≥ q (p > 1), so the quotient is a normal number in [0, 1]; below,
-    // q carries too few digits and pow() gives t^(p−1) instead (docs/hardening.md →
-    // "Findings", 4 and 10). For p = ∞ a q of 0 says t < 1, so t^(p−1) is 0 too, also where t
-    // rounded to 1 (pow(1, ∞) = 1 would weigh that argument fully beside the other).
-    pow_lo = (q >= std::numeric_limits<S>::min() ? q / ratio
-              : std::isinf(p)                    ? S(0)
-                                                 : std::pow(ratio, p - S(1))) *
+    // q ≥ min implies t ≥ q (p > 1), so the quotient is a normal number in [0, 1]. Below,
+    // q carries too few digits; for t < 1/2 pow() gives t^(p−1) instead (docs/hardening.md →
+    // "Findings", 4 and 10). For t ≥ 1/2, t^(p−1) ≤ 2q is as small as q, and the quotient
+    // keeps its digits; the second level's ratio, from rounded norms, can also exceed 1 there
+    // by an ulp where its logarithm says it is below 1, and with p near the format's range a
+    // power of it would be ∞ (finding 29). For p = ∞ a q of 0 says t < 1, so t^(p−1) is 0
+    // too (pow(1, ∞) = 1 would weigh that argument fully beside the other).
+    pow_lo = (q >= std::numeric_limits<S>::min() || ratio >= S(0.5) ? q / ratio
+              : std::isinf(p)                                       ? S(0)
+                                                                    : std::pow(ratio, p - S(1))) *
              pow_m;
   }
   return a_is_max ? PowersLog2<S>{pow_m, pow_lo, q, log2_one_plus_q, log2_ratio, true}

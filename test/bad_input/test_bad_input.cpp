@@ -20,6 +20,7 @@
 #include "fcl_superellipsoid/batch_distance.h"
 #include "fcl_superellipsoid/contact_manifold.h"
 #include "fcl_superellipsoid/fcl_integration.h"
+#include "fcl_superellipsoid/pair_derivatives.h"
 #include "fcl_superellipsoid/point_derivatives.h"
 #include "fcl_superellipsoid/point_distance.h"
 #include "fcl_superellipsoid/tessellation.h"
@@ -175,19 +176,37 @@ TYPED_TEST(BadInputTest, PointDistance) {
   }
 }
 
-TYPED_TEST(BadInputTest, ContactManifold) {
-  using S = TypeParam;
-  const S nan = TestFixture::nan;
+/// The refusals every call on one pair of shapes shares (contactManifold,
+/// pairDistanceDerivatives): `call(shape, X_WS, other, X_WO)` with a pose that is not finite, a
+/// mesh (its node type named) and another shape's bad parameters (as for every pair query).
+template <typename S, typename Call>
+void expectPairRefusals(const std::string& where, Call call) {
+  const S nan = std::numeric_limits<S>::quiet_NaN();
   const Superellipsoid<S> shape(1, 1, 1, S(0.5), S(0.5));
   const fcl::Sphere<S> sphere(S(0.5));
   const fcl::Transform3<S> X = fcl::Transform3<S>::Identity();
   fcl::Transform3<S> bad = X;
   bad.translation() = Vector3<S>(nan, 0, 0);
+  expectRefused([&] { call(shape, bad, sphere, X); }, where, "the pose X_WS must be finite",
+                "(nan, 0, 0)");
+  expectRefused([&] { call(shape, X, sphere, bad); }, where, "the pose X_WO must be finite",
+                "(nan, 0, 0)");
+  const auto mesh = makeBVHModel<fcl::OBBRSS<S>>(tessellate(shape, 8));
+  expectRefused([&] { call(shape, X, *mesh, X); }, where,
+                "the other geometry must be a Superellipsoid", "BV_OBBRSS");
+  const fcl::Sphere<S> bad_sphere(nan);
+  expectRefused([&] { call(shape, X, bad_sphere, X); }, where,
+                "the other shape's radius must be finite", "nan");
+}
+
+TYPED_TEST(BadInputTest, ContactManifold) {
+  using S = TypeParam;
+  const S nan = TestFixture::nan;
   const std::string where = "contactManifold";
-  expectRefused([&] { contactManifold(shape, bad, sphere, X); }, where,
-                "the pose X_WS must be finite", "(nan, 0, 0)");
-  expectRefused([&] { contactManifold(shape, X, sphere, bad); }, where,
-                "the pose X_WO must be finite", "(nan, 0, 0)");
+  expectPairRefusals<S>(where, [](const auto&... args) { contactManifold(args...); });
+  const Superellipsoid<S> shape(1, 1, 1, S(0.5), S(0.5));
+  const fcl::Sphere<S> sphere(S(0.5));
+  const fcl::Transform3<S> X = fcl::Transform3<S>::Identity();
   const auto with = [&](auto change) {
     ManifoldOptions<S> options;
     change(options);
@@ -203,13 +222,11 @@ TYPED_TEST(BadInputTest, ContactManifold) {
                 "options.outline_area_tolerance must be finite and > 0", "0");
   expectRefused(with([](ManifoldOptions<S>& o) { o.max_points = 0; }), where,
                 "options.max_points must be >= 1", "0");
-  const auto mesh = makeBVHModel<fcl::OBBRSS<S>>(tessellate(shape, 8));
-  expectRefused([&] { contactManifold(shape, X, *mesh, X); }, where,
-                "the other geometry must be a Superellipsoid", "BV_OBBRSS");
-  // The other shape's parameters, as for every pair query.
-  const fcl::Sphere<S> bad_sphere(nan);
-  expectRefused([&] { contactManifold(shape, X, bad_sphere, X); }, where,
-                "the other shape's radius must be finite", "nan");
+}
+
+TYPED_TEST(BadInputTest, PairDerivatives) {
+  expectPairRefusals<TypeParam>("pairDistanceDerivatives",
+                                [](const auto&... args) { pairDistanceDerivatives(args...); });
 }
 
 TYPED_TEST(BadInputTest, PointDerivatives) {

@@ -412,6 +412,64 @@ void expectTheEnumeratedRoundDepth(const std::shared_ptr<Superellipsoidd>& shape
 // polytope, while the circle's own lowest point lies outside the arc, 35° away, with a maximum
 // between them. The family search bracketed only its lowest sample and ended 8.6e-5 and 4.4e-8 ×
 // size too deep; now every sign change of the derivative is bracketed.
+// A capsule through the centre of a box-like superellipsoid (ε1 or ε2 ≤ 0.3), rotated at
+// random: the depth's minimiser lies inside an end's region, at a local minimum of that end's
+// h_A(v) − v·w below one of the shape's flat faces, while the end's escape direction lies below
+// another face (docs/hardening.md, finding 30: the depth came out 2.6e-4 × size too deep).
+// Ground truth: the least F found by the enumeration of the capsule's pieces (polytope_depth.h,
+// its segment with the ball's radius added to the superellipsoid's support function) and by
+// fine pattern searches (64 directions, to 1e-15 rad) from the best 8 of 20,000 lattice
+// directions: beside a box-like shape's flat faces F is nearly kinked, and either search alone
+// can stop 1e-8 to 3e-5 short. Every direction's F is a translation that separates the shapes,
+// so the least found bounds the depth from above, as the library's does: its depth must not
+// exceed the truth's by more than 1e-9 × size, nor fall below it. Disabled: finding 30 is open
+// (one of the 24 pairs is still 2.5e-6 × size too deep, and the truth stops 3e-8 short on
+// another).
+TEST(ShapePairs, DISABLED_CapsuleThroughABoxLikeShapesCentre) {
+  std::mt19937 rng(30);
+  std::uniform_real_distribution<double> unit(-1, 1), box_like(0.1, 0.3), any(0.2, 1.8),
+      length(0.2, 1.0), offset(-0.1, 0.1);
+  double worst = 0;
+  for (int trial = 0; trial < 24; ++trial) {
+    RandomShape s = randomShape(rng, 1);
+    (trial % 2 == 0 ? s.e1 : s.e2) = LD(box_like(rng));
+    (trial % 2 == 0 ? s.e2 : s.e1) = LD(any(rng));
+    const auto shape = makeShape<double>(s);
+    const V3 centre(unit(rng), unit(rng), unit(rng));
+    const fcl::Transform3d X_WA = pose<double>(randomRotation(rng), centre);
+    const fcl::Transform3d X_WB = pose<double>(
+        randomRotation(rng), centre + V3(LD(offset(rng)), LD(offset(rng)), LD(offset(rng))));
+    const double r = 0.5 * length(rng), lz = length(rng);
+    const auto capsule = std::make_shared<fcl::Capsuled>(r, lz);
+    const V3 axis = X_WB.linear().cast<LD>().col(2) * (LD(lz) / 2);
+    const V3 c = X_WB.translation().cast<LD>();
+    const std::function<LD(const V3&)> h_a = supportFunction(*shape, X_WA);
+    const std::function<LD(const V3&)> h_ball = [&](const V3& w) {
+      return h_a(w) + LD(r) * w.norm();
+    };
+    const std::function<LD(const V3&)> h_segment = [&](const V3& w) {
+      return std::max(w.dot(V3(c + axis)), w.dot(V3(c - axis)));
+    };
+    LD depth = polytopeDepth(h_ball, {V3(c + axis), V3(c - axis)});
+    std::vector<std::pair<LD, V3>> starts;
+    for (const V3& v : fibonacciLattice(20000))
+      starts.push_back({h_ball(v) + h_segment(V3(-v)), v});
+    std::partial_sort(starts.begin(), starts.begin() + 8, starts.end(),
+                      [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (int k = 0; k < 8; ++k) {
+      depth = std::min(depth, referenceDepthNear(h_ball, h_segment, starts[k].second, LD(0.05)));
+    }
+    const LD expected = -depth;
+    const double size_max = std::max<double>(s.radii.maxCoeff(), r + lz / 2);
+    const Answer got = ask<double>(shape, X_WA, capsule, X_WB, 1e-9 * size_max);
+    const double e = (double(expected) - got.distance) / size_max;  // > 0: too deep
+    worst = std::max(worst, std::abs(e));
+    EXPECT_LE(e, 1e-9) << "trial " << trial << ": " << got.distance << " vs " << double(expected);
+    EXPECT_GE(e, -1e-9) << "trial " << trial << ": " << got.distance << " vs " << double(expected);
+  }
+  std::cout << "capsule through a box-like centre: worst depth error " << worst << " × size\n";
+}
+
 TEST(ShapePairs, EdgeCirclesWithSeveralLocalMinima) {
   const std::vector<ReplayedOverlap> cases = {
       {std::make_shared<Superellipsoidd>(0x1.9a48dd9b235d7p+1, 0x1.2c7a3c4e7c0cfp-1,

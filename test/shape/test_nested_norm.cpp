@@ -15,6 +15,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "fcl_superellipsoid/superellipsoid.h"
 #include "shape/nested_norm.h"
@@ -197,6 +198,96 @@ TEST(NestedNormTest, SupportOfADirectionWithComponentsFarApartOnATinyShape) {
     }
   }
   RecordProperty("worst_relative_error", testing::PrintToString(worst));
+}
+
+// ‖(a, b)‖_p and its gradient (∂/∂a, ∂/∂b) in long double from the ratio t = lo/m, which
+// stays in range for exponents near the format's limit (2/ε = 2.5e23), where a^p overflows.
+struct RatioNorm2L {
+  long double n, da, db;
+};
+RatioNorm2L ratioNorm2L(long double a, long double b, long double p) {
+  const long double m = std::max(a, b), lo = std::min(a, b);
+  if (m == 0) return {0, 0, 0};
+  const long double t = lo / m, q = std::pow(t, p);
+  const long double pow_m = std::pow(1 + q, (1 - p) / p);  // (m/N)^(p−1)
+  const long double pow_lo = lo > 0 ? std::pow(t, p - 1) * pow_m : 0;
+  return {m * std::pow(1 + q, 1 / p), a >= b ? pow_m : pow_lo, a >= b ? pow_lo : pow_m};
+}
+
+// The gauge of a box-like shape (ε2 down to 7.9e-24 in float, 1e-300 in double) at points where
+// the first level's norm r = ‖(u1, u2)‖_p1 and u3 tie to within an ulp (u1 = u3, u2 a little
+// smaller): the second level's ratio, from r rounded, exceeded 1 by an ulp where its logarithm
+// said it was below 1, and its power with p2 = 2/ε2 was ∞ (finding 29 in docs/hardening.md: a
+// query deep inside such a shape was answered as outside, at the centre). Ground truth: the
+// ratio form in long double at the same scaled arguments u (rounded as evaluate rounds them).
+// The value is well conditioned (relative, 8 ulps). The gradient is not: near a tie its
+// components change by p ulps when u moves by one, so the check is backward: each component lies
+// within the range the truth takes over u's coordinates moved by up to 4 ulps each (a rounding
+// of the ratios is such a move), ± 16 ulps. Euler's identity ∇N·w = N holds to rounding. The
+// Hessian has no NaN (at an exact tie under p2 = 2e300 its true value, about p2/N·scale², is
+// beyond double's range).
+template <typename S>
+void expectFiniteAtLevelTies(const std::vector<S>& eps2s, const std::vector<S>& eps1s) {
+  using L = long double;
+  using VectorL = Eigen::Matrix<L, 3, 1>;
+  const S ulp = std::numeric_limits<S>::epsilon();
+  auto truth = [](const detail::NestedNorm<S>& gauge, const VectorL& u) {
+    const RatioNorm2L inner = ratioNorm2L(u[0], u[1], gauge.p1);
+    const RatioNorm2L outer = ratioNorm2L(inner.n, u[2], gauge.p2);
+    return std::make_pair(outer.n, VectorL(outer.da * inner.da, outer.da * inner.db, outer.db));
+  };
+  L worst_value = 0;
+  for (const S eps2 : eps2s) {
+    for (const S eps1 : eps1s) {
+      for (const Vector3<S>& radii :
+           {Vector3<S>(Vector3<S>::Constant(S(3.49456182e-4))), Vector3<S>(S(1), S(0.7), S(1.3))}) {
+        const detail::NestedNorm<S> gauge =
+            detail::NestedNorm<S>::gauge(Superellipsoid<S>(radii, eps1, eps2));
+        for (const S c : {S(0.0144914), S(0.3), S(0.9)}) {
+          for (const S shrink : {S(0), S(ulp), S(4 * ulp), S(1e-6), S(1e-3), S(0.3)}) {
+            for (const S stretch : {S(0), S(ulp), S(-ulp)}) {
+              // u1 = u3 = c (up to the radii's rounding), u2 = c·(1 − shrink).
+              const Vector3<S> w(c * radii[0], c * (1 - shrink) * radii[1],
+                                 c * (1 + stretch) * radii[2]);
+              SCOPED_TRACE(testing::Message() << "eps (" << eps1 << ", " << eps2 << "), radii "
+                                              << radii.transpose() << ", w " << w.transpose());
+              const detail::NestedNormEval<S> got = gauge.evaluate(w, true);
+              ASSERT_TRUE(std::isfinite(got.value));
+              ASSERT_TRUE(got.gradient.allFinite());
+              ASSERT_FALSE(got.hessian.hasNaN());
+              const VectorL u = w.cwiseProduct(gauge.scale).template cast<L>();
+              const L value = truth(gauge, u).first;
+              const L value_error = std::fabs(got.value - value) / value;
+              EXPECT_LE(value_error, L(8 * ulp));
+              worst_value = std::max(worst_value, value_error);
+              EXPECT_NEAR(gauge.value(w), got.value, 8 * ulp * got.value);
+              EXPECT_NEAR(got.gradient.dot(w), got.value, 8 * ulp * got.value);  // Euler
+              VectorL low = VectorL::Constant(2), high = VectorL::Constant(-1);
+              for (int corner = 0; corner < 27; ++corner) {
+                VectorL moved = u;
+                for (int i = 0, k = corner; i < 3; ++i, k /= 3)
+                  moved[i] *= 1 + L(4 * ulp) * (k % 3 - 1);
+                const VectorL g = truth(gauge, moved).second;
+                low = low.cwiseMin(g);
+                high = high.cwiseMax(g);
+              }
+              for (int i = 0; i < 3; ++i) {
+                const L component = got.gradient[i] / gauge.scale[i];
+                EXPECT_GE(component, low[i] - 16 * ulp) << "gradient component " << i;
+                EXPECT_LE(component, high[i] + 16 * ulp) << "gradient component " << i;
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+  testing::Test::RecordProperty("worst_value_error", testing::PrintToString(double(worst_value)));
+}
+
+TEST(NestedNormTest, AGaugeStaysFiniteWhereItsLevelsTieUnderAHugeExponent) {
+  expectFiniteAtLevelTies<float>({7.91498304e-24f, 1e-20f, 1e-12f}, {1.36506321e-6f, 1e-3f, 0.5f});
+  expectFiniteAtLevelTies<double>({1e-300, 1e-200, 1e-30}, {1e-12, 1e-6, 0.5});
 }
 
 TEST(NestedNormTest, DualHessianIsTheInverseShapeOperator) {

@@ -5,6 +5,7 @@
 #include <array>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include "fcl_superellipsoid/point_distance.h"
 #include "polished_reference.h"
@@ -750,6 +751,68 @@ TYPED_TEST(PointDistanceTest, BesideAPinchedTipTheDualBoundCertifies) {
       }
     }
   }
+}
+
+// Deep inside box-like shapes (ε1 ≤ 1e-5, ε2 down to 7.9e-24 in float), at points whose scaled
+// coordinates |Q_i|/a_i tie or nearly tie (docs/hardening.md, finding 29: the gauge's second
+// level overflowed at such a tie, and the query was answered as outside, at the centre, with
+// the wrong sign). Ground truth by construction: within half of each radius of the centre the
+// faces are flat to the format's precision, so the distance is −min_i (a_i − |Q_i|) and the
+// nearest point lies on such a face (|N_i| = a_i) with Q's other coordinates. Each query
+// converges.
+TYPED_TEST(PointDistanceTest, DeepInsideABoxWhereScaledCoordinatesTieAFaceIsNearest) {
+  using S = TypeParam;
+  const S ulp = std::numeric_limits<S>::epsilon();
+  const S tiny = std::is_same<S, float>::value ? S(7.91498304e-24) : S(1e-300);
+  const double tolerance = std::is_same<S, float>::value ? 1e-6 : 1e-12;
+  std::mt19937 rng(29);
+  std::uniform_int_distribution<int> coin(0, 1);
+  double worst = 0;
+  for (const Vector3<S>& radii : {Vector3<S>(Vector3<S>::Constant(S(3.49456182e-4))),
+                                  Vector3<S>(S(1), S(0.7), S(1.3)), Vector3<S>(S(5), S(5), S(2))}) {
+    for (const S eps1 : {S(1.36506321e-6), S(1e-5)}) {
+      for (const S eps2 : {tiny, S(1e-12), S(1e-5)}) {
+        const Superellipsoid<S> shape(radii, eps1, eps2);
+        SCOPED_TRACE(test::describe(shape));
+        for (const S c : {S(0.0144914), S(0.1), S(0.45)}) {
+          // Shrinks of 1e-6 to 1e-4 put r = ‖(u1, u2)‖_p1 within ulps of u3 for ε1 = 1.4e-6.
+          std::vector<S> shrinks = {S(0), S(ulp), S(4 * ulp), S(0.3)};
+          for (int k = 0; k <= 16; ++k) shrinks.push_back(S(1e-6 * std::pow(100.0, k / 16.0)));
+          for (const S shrink : shrinks) {
+            for (int tied = 0; tied < 3; ++tied) {  // which coordinate is shrunk
+              Vector3<S> scaled = Vector3<S>::Constant(c);
+              scaled[tied] *= 1 - shrink;
+              Vector3<S> x = scaled.cwiseProduct(radii);
+              for (int i = 0; i < 3; ++i) x[i] = coin(rng) ? x[i] : -x[i];
+              const auto r =
+                  pointDistance(shape, x, DistanceOptions<S>::of(DistanceMethod::kExact));
+              const Vector3<S> depth = radii - x.cwiseAbs();
+              int face = 0;
+              const double expected = -double(depth.minCoeff(&face));
+              ASSERT_TRUE(r.converged) << "at " << x.transpose();
+              const double error = std::abs(double(r.distance) - expected) / double(shape.size());
+              EXPECT_LE(error, tolerance)
+                  << "at " << x.transpose() << ": " << r.distance << ", truth " << expected;
+              // On a face of the minimum depth (the nearest faces may tie), Q's other
+              // coordinates kept.
+              const Vector3<S> n = r.nearest_point.cwiseAbs();
+              int on = 0;
+              (radii - n).cwiseAbs().minCoeff(&on);
+              EXPECT_NEAR(double(depth[on]), -expected, tolerance * double(shape.size()));
+              for (int i = 0; i < 3; ++i) {
+                if (i == on) continue;
+                EXPECT_NEAR(double(r.nearest_point[i]), double(x[i]),
+                            tolerance * double(shape.size()))
+                    << "coordinate " << i << " of " << r.nearest_point.transpose();
+              }
+              worst = std::max(worst, error);
+            }
+          }
+        }
+      }
+    }
+  }
+  this->RecordProperty("worst_relative_error", testing::PrintToString(worst));
 }
 
 TYPED_TEST(PointDistanceTest, WorldFrameOverloadPosesTheAnswer) {

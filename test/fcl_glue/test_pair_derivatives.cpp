@@ -1,0 +1,306 @@
+// The gradient of a pair's signed distance (pair_derivatives.h) against central finite
+// differences of an independent truth: the signed distance as the optimum over directions of
+// the two support functions (test_support/pair_construction.h, referenceDepth: long double,
+// FCL's shapes in closed form, the superellipsoid's nested norm written there), recomputed for
+// each moved pose or changed parameter. The flag against configurations built to have two
+// shortest separating moves, and one-sided differences there.
+
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cone.h>
+#include <fcl/geometry/shape/convex.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/ellipsoid.h>
+#include <fcl/geometry/shape/halfspace.h>
+#include <fcl/geometry/shape/plane.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/geometry/shape/triangle_p.h>
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "fcl_superellipsoid/pair_derivatives.h"
+#include "pair_construction.h"
+#include "polytope_depth.h"
+#include "round_depth.h"
+
+namespace fcl_superellipsoid {
+namespace {
+
+using namespace test;  // pair_construction.h
+using Geometry = std::shared_ptr<fcl::CollisionGeometryd>;
+
+Superellipsoidd superellipsoid(const RandomShape& s) {
+  return Superellipsoidd(Vector3<double>(s.radii.cast<double>()), double(s.e1), double(s.e2));
+}
+
+/// A move of a pair's configuration: a world twist (ω, v) of each pose and a change of each
+/// superellipsoid's (a1, a2, a3, ε1, ε2).
+struct Move {
+  Vector6<double> xi_s, xi_o;
+  Vector5<double> theta_s, theta_o;
+};
+
+/// X moved by t times the world twist ξ = (ω, v): exp(t·ξ)·X (the rotation about the origin).
+fcl::Transform3d movedPose(const fcl::Transform3d& X, const Vector6<double>& xi, double t) {
+  const Eigen::Vector3d omega = xi.head<3>();
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(t * omega.norm(), omega.normalized()).toRotationMatrix();
+  fcl::Transform3d out = X;
+  out.linear() = R * X.linear();
+  out.translation() = R * X.translation() + t * xi.tail<3>();
+  return out;
+}
+
+/// The shape's parameters moved by t·θ.
+RandomShape movedShape(const RandomShape& s, const Vector5<double>& theta, double t) {
+  RandomShape out = s;
+  for (int k = 0; k < 3; ++k) out.radii[k] += LD(t * theta[k]);
+  out.e1 += LD(t * theta[3]);
+  out.e2 += LD(t * theta[4]);
+  return out;
+}
+
+/// The gradient's terms ∂d/∂x_k·δ_k along a move.
+Eigen::VectorXd termsAlong(const PairDistanceDerivatives<double>& g, const Move& move) {
+  Eigen::VectorXd terms(22);
+  terms << g.d_pose.cwiseProduct(move.xi_s), g.d_other_pose.cwiseProduct(move.xi_o),
+      g.d_shape.cwiseProduct(move.theta_s), g.d_other_shape.cwiseProduct(move.theta_o);
+  return terms;
+}
+
+/// The truth's signed distance of (shape at X_WS, other at X_WO): minus the least of
+/// F(v) = h_S(v) + h_O(−v) over unit v. Where both support functions are smooth (a
+/// superellipsoid, an ellipsoid, a sphere) F is too, and a pattern search from the minimiser v of
+/// a nearby configuration converges (referenceDepthNear); F's kinks, where a polytope's, a
+/// segment's or a rim's support changes piece, stall it, so those partners take the
+/// enumerations of their pieces (polytope_depth.h, round_depth.h; a capsule is its segment
+/// with the ball's radius added to the superellipsoid's support). A halfspace and a plane in
+/// closed form: the shape's extreme points along the normal.
+LD truthNear(const Superellipsoidd& shape, const fcl::Transform3d& X_WS,
+             const fcl::CollisionGeometryd& other, const fcl::Transform3d& X_WO, const V3& v) {
+  const std::function<LD(const V3&)> h_s = supportFunction(shape, X_WS);
+  if (auto* x = dynamic_cast<const fcl::Halfspaced*>(&other)) {
+    const V3 u = X_WO.linear().cast<LD>() * x->n.cast<LD>();
+    const LD c = LD(x->d) + u.dot(X_WO.translation().cast<LD>());
+    return -h_s(V3(-u)) - c;  // the lowest point along u, above the boundary u·x = c
+  }
+  if (auto* x = dynamic_cast<const fcl::Planed*>(&other)) {
+    const V3 u = X_WO.linear().cast<LD>() * x->n.cast<LD>();
+    const LD c = LD(x->d) + u.dot(X_WO.translation().cast<LD>());
+    return std::max(-h_s(V3(-u)) - c, c - h_s(u));  // above it, or below it
+  }
+  if (auto* x = dynamic_cast<const fcl::Capsuled*>(&other)) {
+    const LD r = x->radius;
+    const V3 axis = X_WO.linear().cast<LD>().col(2) * (LD(x->lz) / 2);
+    const V3 centre = X_WO.translation().cast<LD>();
+    return -polytopeDepth([&](const V3& w) { return h_s(w) + r * w.norm(); },
+                          {V3(centre + axis), V3(centre - axis)});
+  }
+  if (dynamic_cast<const fcl::Cylinderd*>(&other) || dynamic_cast<const fcl::Coned*>(&other)) {
+    return -roundDepth(h_s, other, X_WO);
+  }
+  const std::vector<V3> vertices = polytopeVertices(other, X_WO);
+  if (!vertices.empty()) return -polytopeDepth(h_s, vertices);
+  return -referenceDepthNear(h_s, supportFunction(other, X_WO), v, LD(1e-3));
+}
+
+struct Partner {
+  std::string name;
+  Geometry geometry;
+  const RandomShape* shape = nullptr;  // where the partner is a superellipsoid
+};
+
+/// A random partner of about `size`, of kind `kind` (0–10: the smooth ones first).
+Partner randomPartner(int kind, std::mt19937& rng, LD size, RandomShape& storage) {
+  std::uniform_real_distribution<double> r(0.3, 1.0);
+  const double s = double(size);
+  switch (kind) {
+    case 0:
+      storage = randomShape(rng, size, 0.2, 1.8);
+      return {"superellipsoid", std::make_shared<Superellipsoidd>(superellipsoid(storage)),
+              &storage};
+    case 1:
+      return {"ellipsoid", std::make_shared<fcl::Ellipsoidd>(s * r(rng), s * r(rng), s * r(rng))};
+    case 2:
+      return {"sphere", std::make_shared<fcl::Sphered>(s * r(rng))};
+    case 3:
+      return {"box", std::make_shared<fcl::Boxd>(s * r(rng), s * r(rng), s * r(rng))};
+    case 4:
+      return {"capsule", std::make_shared<fcl::Capsuled>(0.5 * s * r(rng), s * r(rng))};
+    case 5:
+      return {"cylinder", std::make_shared<fcl::Cylinderd>(0.5 * s * r(rng), s * r(rng))};
+    case 6:
+      return {"cone", std::make_shared<fcl::Coned>(0.5 * s * r(rng), s * r(rng))};
+    case 7: {
+      // A tetrahedron.
+      auto vertices = std::make_shared<std::vector<Vector3<double>>>();
+      for (int i = 0; i < 4; ++i) {
+        vertices->push_back(s * Vector3<double>(r(rng) - 0.65, r(rng) - 0.65, r(rng) - 0.65));
+      }
+      (*vertices)[3] += s * Vector3<double>(0.3, 0.3, 0.9);
+      auto faces = std::make_shared<std::vector<int>>(
+          std::vector<int>{3, 0, 2, 1, 3, 0, 1, 3, 3, 1, 2, 3, 3, 2, 0, 3});
+      return {"convex", std::make_shared<fcl::Convexd>(vertices, 4, faces)};
+    }
+    case 8:
+      return {"triangle", std::make_shared<fcl::TrianglePd>(s * Vector3<double>(r(rng), 0, 0),
+                                                            s * Vector3<double>(0, r(rng), 0),
+                                                            s * Vector3<double>(0.1, 0.2, r(rng)))};
+    case 9:  // {x : z ≤ 0} in its frame
+      return {"halfspace", std::make_shared<fcl::Halfspaced>(Vector3<double>(0, 0, 1), 0.0)};
+    default:
+      return {"plane", std::make_shared<fcl::Planed>(Vector3<double>(0, 0, 1), 0.0)};
+  }
+}
+
+// The gradient against central differences of the truth along random moves of the whole
+// configuration (both poses' twists, both superellipsoids' parameters at once; two per pair,
+// step 1e-5 of a move whose rotations are about 1 rad, translations and radii about the size,
+// exponents about 0.3), on random pairs of every kind, separated and overlapping, with sizes
+// from 0.01 to 100: |∇d·δ − difference| within 1e-6 of Σ|∂d/∂x_k·δ_k|. (A move of every
+// component at once reaches every component of the gradient; the truth of the flat-faced
+// partners, an enumeration of their pieces, costs too much for a difference per component.)
+// Also: the same twist applied to both poses leaves the distance alone (the two pose gradients
+// cancel), and the flag is clear.
+TEST(PairDerivatives, GradientsMatchFiniteDifferencesOfTheTruth) {
+  std::mt19937 rng(53);
+  std::uniform_real_distribution<double> gap(-0.65, 0.3), unit(-1, 1), log_size(-2, 2);
+  std::normal_distribution<double> normal;
+  double worst = 0;
+  int separated = 0, overlapping = 0;
+  // Six pairs of each kind, three of a box and of a tetrahedron (whose truth, an enumeration of
+  // every vertex triple and pair, costs the most).
+  std::vector<int> kinds;
+  for (int round = 0; round < 6; ++round) {
+    for (int kind = 0; kind < 11; ++kind) {
+      if (round < 3 || (kind != 3 && kind != 7)) kinds.push_back(kind);
+    }
+  }
+  for (std::size_t trial = 0; trial < kinds.size(); ++trial) {
+    const int kind = kinds[trial];
+    const LD size = std::pow(LD(10), LD(log_size(rng)));
+    const RandomShape s = randomShape(rng, size, 0.2, 1.8);
+    RandomShape storage;
+    const Partner partner = randomPartner(kind, rng, size, storage);
+    const Superellipsoidd shape = superellipsoid(s);
+    const fcl::Transform3d X_WS =
+        pose<double>(randomRotation(rng), size * V3(unit(rng), unit(rng), unit(rng)));
+    // The partner's centre along a random direction, at a distance that makes the pair
+    // separated or overlapping.
+    const V3 direction = V3(unit(rng), unit(rng), unit(rng)).normalized();
+    const LD reach = (1.0 + gap(rng)) * (s.radii.maxCoeff() + size * 0.6);
+    const fcl::Transform3d X_WO =
+        pose<double>(randomRotation(rng), X_WS.translation().cast<LD>() + reach * direction);
+    SCOPED_TRACE(testing::Message()
+                 << "trial " << trial << ", " << partner.name << ", size " << double(size));
+
+    const PairDistanceDerivatives<double> got =
+        pairDistanceDerivatives(shape, X_WS, *partner.geometry, X_WO);
+    // The minimiser v of a smooth pair's F, from which the moved configurations' searches start.
+    V3 v(0, 0, 1);
+    if (kind <= 2) {
+      referenceDepth(supportFunction(shape, X_WS), supportFunction(*partner.geometry, X_WO), 20000,
+                     &v);
+    }
+    const LD truth = truthNear(shape, X_WS, *partner.geometry, X_WO, v);
+    ASSERT_NEAR(got.distance, double(truth), 1e-8 * double(size));
+    (truth < 0 ? overlapping : separated)++;
+    EXPECT_TRUE(got.differentiable);
+    EXPECT_EQ(got.other_is_superellipsoid, partner.shape != nullptr);
+    if (partner.shape == nullptr) EXPECT_EQ(got.d_other_shape, Vector5<double>::Zero());
+    // A rigid motion of both moves nothing.
+    const double lever = 3 * double(size);  // the rotations' lever arm, about the world origin
+    EXPECT_LE((got.d_pose + got.d_other_pose).norm(), 1e-8 * lever);
+
+    for (int m = 0; m < 2; ++m) {
+      Move move;
+      for (int k = 0; k < 3; ++k) {
+        move.xi_s[k] = normal(rng);
+        move.xi_o[k] = normal(rng);
+        move.xi_s[k + 3] = double(size) * normal(rng);
+        move.xi_o[k + 3] = double(size) * normal(rng);
+        move.theta_s[k] = 0.3 * double(size) * normal(rng);
+        move.theta_o[k] = 0.3 * double(size) * normal(rng);
+      }
+      for (int k = 3; k < 5; ++k) {
+        move.theta_s[k] = 0.3 * normal(rng);
+        move.theta_o[k] = 0.3 * normal(rng);
+      }
+      const double t = 1e-5;
+      auto at = [&](double step) {
+        const Superellipsoidd moved_shape = superellipsoid(movedShape(s, move.theta_s, step));
+        const fcl::Transform3d X_S = movedPose(X_WS, move.xi_s, step);
+        const fcl::Transform3d X_O = movedPose(X_WO, move.xi_o, step);
+        if (partner.shape != nullptr) {
+          const Superellipsoidd moved_other =
+              superellipsoid(movedShape(*partner.shape, move.theta_o, step));
+          return truthNear(moved_shape, X_S, moved_other, X_O, v);
+        }
+        return truthNear(moved_shape, X_S, *partner.geometry, X_O, v);
+      };
+      const double difference = double((at(t) - at(-t)) / (2 * t));
+      const Eigen::VectorXd terms = termsAlong(got, move);
+      const double error = std::abs(terms.sum() - difference) / terms.cwiseAbs().sum();
+      EXPECT_LE(error, 1e-6) << "move " << m << ": gradient " << terms.sum() << ", difference "
+                             << difference << "; terms " << terms.transpose();
+      worst = std::max(worst, error);
+    }
+  }
+  EXPECT_GT(separated, 15);
+  EXPECT_GT(overlapping, 15);
+  RecordProperty("worst_relative_error", testing::PrintToString(worst));
+  std::printf("pair gradients: worst relative error %g (%d separated, %d overlapping)\n", worst,
+              separated, overlapping);
+}
+
+// Two shortest separating moves: coincident centres of the superellipsoid and a centrally
+// symmetric partner (another superellipsoid, a sphere, a box, a capsule; rotated at random),
+// where −n separates them as well as n, and a plane through the shape's centre (straddled by
+// equal depths). The flag is set, the gradient is finite and it is that of the returned
+// direction: moving the partner along n raises the distance at rate 1, the truth's one-sided
+// difference. Moved off the centre by 1e-2 of the size, the same pairs are differentiable.
+TEST(PairDerivatives, TwoShortestSeparatingMovesAreFlagged) {
+  std::mt19937 rng(54);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (int trial = 0; trial < 20; ++trial) {
+    const int kind = std::array<int, 5>{0, 2, 3, 4, 10}[trial % 5];
+    const RandomShape s = randomShape(rng, 1, 0.2, 1.8);
+    RandomShape storage;
+    const Partner partner = randomPartner(kind, rng, 1, storage);
+    const Superellipsoidd shape = superellipsoid(s);
+    const V3 centre(unit(rng), unit(rng), unit(rng));
+    const fcl::Transform3d X_WS = pose<double>(randomRotation(rng), centre);
+    const fcl::Transform3d X_WO = pose<double>(randomRotation(rng), centre);
+    SCOPED_TRACE(testing::Message() << "trial " << trial << ", " << partner.name);
+    const PairDistanceDerivatives<double> g =
+        pairDistanceDerivatives(shape, X_WS, *partner.geometry, X_WO);
+    EXPECT_LT(g.distance, 0);
+    EXPECT_FALSE(g.differentiable);
+    ASSERT_TRUE(g.d_pose.allFinite() && g.d_other_pose.allFinite() && g.d_shape.allFinite());
+    EXPECT_LE((g.d_other_pose.tail<3>() - g.normal).norm(), 1e-12);
+    // One-sided: the partner moved along n by t.
+    const double t = 1e-6;
+    fcl::Transform3d moved = X_WO;
+    moved.translation() += t * g.normal;
+    V3 v = g.normal.cast<LD>();
+    const LD before = truthNear(shape, X_WS, *partner.geometry, X_WO, v);
+    const LD after = truthNear(shape, X_WS, *partner.geometry, moved, v);
+    EXPECT_NEAR(g.distance, double(before), 1e-9);
+    EXPECT_NEAR(double((after - before) / t), 1.0, 1e-6);
+    // Off the centre (not for the plane: any plane through the shape straddles it).
+    if (kind == 10) continue;
+    fcl::Transform3d off = X_WO;
+    off.translation() += 1e-2 * Vector3<double>(unit(rng), unit(rng), unit(rng)).normalized();
+    EXPECT_TRUE(pairDistanceDerivatives(shape, X_WS, *partner.geometry, off).differentiable);
+  }
+}
+
+}  // namespace
+}  // namespace fcl_superellipsoid
