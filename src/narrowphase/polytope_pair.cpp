@@ -528,6 +528,20 @@ PairHit<S> overlap(const ShapePair<S>& pair, const Polytope<S>& p, const PairHit
     }
     if (depth.certified(outside, tolerance)) return depth.best();
   }
+  // A vertex outside the superellipsoid: where the shape is thin or box-like, h_A(v) − v·w has a
+  // local minimum near each of the shape's axis directions, and one inside w's region can be F's
+  // minimum (a plate 0.1 thick through a box's centre came out 2.3e-2 × size too deep:
+  // docs/hardening.md, finding 31). So f_w descends from each axis direction in w's region.
+  for (std::size_t i = 0; i < p.vertices.size(); ++i) {
+    if (escapes[i].distance < S(0)) continue;
+    const Vector3<S>& w = p.vertices[i];
+    for (int k = 0; k < 6; ++k) {
+      const Vector3<S> axis = pair.X_WS->linear().col(k % 3) * (k < 3 ? S(1) : S(-1));
+      if (p.support(Vector3<S>(-axis)) > -axis.dot(w) + tolerance) continue;
+      depth.offerDescent(SupportMap<S>::ofPoint(w), axis);
+      if (certified()) return depth.best();
+    }
+  }
   // In float the candidates alone can miss a triangle overlap's depth (FloatAgreesWithDouble,
   // docs/math.md); float keeps the pattern search.
   if constexpr (std::is_same_v<S, float>) return depth.refinedBest();

@@ -160,6 +160,43 @@ Partner randomPartner(int kind, std::mt19937& rng, LD size, RandomShape& storage
   }
 }
 
+/// The float twin of one of randomPartner's geometries (nullptr for a convex).
+std::shared_ptr<fcl::CollisionGeometry<float>> asFloat(const fcl::CollisionGeometryd& g) {
+  if (auto* x = dynamic_cast<const Superellipsoidd*>(&g)) {
+    return std::make_shared<Superellipsoidf>(x->radii().cast<float>(), float(x->eps1()),
+                                             float(x->eps2()));
+  }
+  if (auto* x = dynamic_cast<const fcl::Ellipsoidd*>(&g)) {
+    return std::make_shared<fcl::Ellipsoidf>(x->radii.cast<float>());
+  }
+  if (auto* x = dynamic_cast<const fcl::Sphered*>(&g)) {
+    return std::make_shared<fcl::Spheref>(float(x->radius));
+  }
+  if (auto* x = dynamic_cast<const fcl::Boxd*>(&g)) {
+    return std::make_shared<fcl::Boxf>(x->side.cast<float>());
+  }
+  if (auto* x = dynamic_cast<const fcl::Capsuled*>(&g)) {
+    return std::make_shared<fcl::Capsulef>(float(x->radius), float(x->lz));
+  }
+  if (auto* x = dynamic_cast<const fcl::Cylinderd*>(&g)) {
+    return std::make_shared<fcl::Cylinderf>(float(x->radius), float(x->lz));
+  }
+  if (auto* x = dynamic_cast<const fcl::Coned*>(&g)) {
+    return std::make_shared<fcl::Conef>(float(x->radius), float(x->lz));
+  }
+  if (auto* x = dynamic_cast<const fcl::TrianglePd*>(&g)) {
+    return std::make_shared<fcl::TrianglePf>(x->a.cast<float>(), x->b.cast<float>(),
+                                             x->c.cast<float>());
+  }
+  if (auto* x = dynamic_cast<const fcl::Halfspaced*>(&g)) {
+    return std::make_shared<fcl::Halfspacef>(x->n.cast<float>(), float(x->d));
+  }
+  if (auto* x = dynamic_cast<const fcl::Planed*>(&g)) {
+    return std::make_shared<fcl::Planef>(x->n.cast<float>(), float(x->d));
+  }
+  return nullptr;
+}
+
 // The gradient against central differences of the truth along random moves of the whole
 // configuration (both poses' twists, both superellipsoids' parameters at once; two per pair,
 // step 1e-5 of a move whose rotations are about 1 rad, translations and radii about the size,
@@ -299,6 +336,42 @@ TEST(PairDerivatives, TwoShortestSeparatingMovesAreFlagged) {
     fcl::Transform3d off = X_WO;
     off.translation() += 1e-2 * Vector3<double>(unit(rng), unit(rng), unit(rng)).normalized();
     EXPECT_TRUE(pairDistanceDerivatives(shape, X_WS, *partner.geometry, off).differentiable);
+  }
+}
+
+// Float against double on random pairs of every kind: the same distance, normal and gradient
+// to float's precision (1e-3 of the size or of the gradient's scale: a float pair's witnesses
+// carry that; ShapePairs.FloatAgreesWithDouble), and the same flag.
+TEST(PairDerivatives, FloatAgreesWithDouble) {
+  std::mt19937 rng(55);
+  std::uniform_real_distribution<double> gap(-0.65, 0.3), unit(-1, 1);
+  for (int trial = 0; trial < 44; ++trial) {
+    const int kind = trial % 11;
+    if (kind == 7) continue;  // fcl::Convex's float form takes its own vertex list
+    const RandomShape s = randomShape(rng, 1, 0.2, 1.8);
+    RandomShape storage;
+    const Partner partner = randomPartner(kind, rng, 1, storage);
+    const Superellipsoidd shape = superellipsoid(s);
+    const fcl::Transform3d X_WS = pose<double>(randomRotation(rng), V3(unit(rng), unit(rng), 0));
+    const V3 direction = V3(unit(rng), unit(rng), unit(rng)).normalized();
+    const LD reach = (1.0 + gap(rng)) * (s.radii.maxCoeff() + 0.6);
+    const fcl::Transform3d X_WO =
+        pose<double>(randomRotation(rng), X_WS.translation().cast<LD>() + reach * direction);
+    SCOPED_TRACE(testing::Message() << "trial " << trial << ", " << partner.name);
+    const PairDistanceDerivatives<double> d =
+        pairDistanceDerivatives(shape, X_WS, *partner.geometry, X_WO);
+    const std::shared_ptr<fcl::CollisionGeometry<float>> other = asFloat(*partner.geometry);
+    ASSERT_NE(other, nullptr);
+    const PairDistanceDerivatives<float> f = pairDistanceDerivatives(
+        Superellipsoidf(shape.radii().cast<float>(), float(shape.eps1()), float(shape.eps2())),
+        fcl::Transform3f(X_WS.cast<float>()), *other, fcl::Transform3f(X_WO.cast<float>()));
+    EXPECT_NEAR(f.distance, d.distance, 1e-3);
+    EXPECT_LE((f.normal.cast<double>() - d.normal).norm(), 1e-3);
+    const double scale = 1 + d.d_pose.norm() + d.d_other_pose.norm();
+    EXPECT_LE((f.d_pose.cast<double>() - d.d_pose).norm(), 1e-3 * scale);
+    EXPECT_LE((f.d_other_pose.cast<double>() - d.d_other_pose).norm(), 1e-3 * scale);
+    EXPECT_LE((f.d_shape.cast<double>() - d.d_shape).norm(), 1e-3 * (1 + d.d_shape.norm()));
+    EXPECT_EQ(f.differentiable, d.differentiable);
   }
 }
 
