@@ -493,8 +493,8 @@ PairHit<S> overlap(const ShapePair<S>& pair, const Polytope<S>& p, const PairHit
   for (const Vector3<S>& w : p.vertices) centroid += w / S(p.vertices.size());
   // A vertex inside the superellipsoid also descends from inside its own region (where F is its
   // h_A(v) − v·w, which can have a second local minimum there: the case the tests found).
-  // Vertices outside are left to the other candidates, to keep the cost down (a choice, not a
-  // proof: docs/math.md).
+  // Vertices outside descend only from the shape's axis directions, after the edges (below; a
+  // choice, not a proof: docs/math.md).
   const auto escapes = depth.offerPoints(p.vertices);
   if (depth.certified(outside, tolerance)) return depth.best();
   // Each descent, and each edge's arc, may give a candidate the balls certify; then the rest is
