@@ -11,6 +11,7 @@
 // with Google Benchmark's tooling (--benchmark_filter, --benchmark_format=json, compare.py).
 
 #include <benchmark/benchmark.h>
+#include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/cylinder.h>
@@ -192,13 +193,15 @@ void runNearSurface(benchmark::State& state, bool fresh) {
 
 /// The contact manifold (contact_manifold.h) of a box-like body (ε = 0.2) resting on a face,
 /// pressed 1e-3 of its size into it and tilted up to 0.02 rad, over 64 such poses: against a
-/// halfspace, another box-like superellipsoid and a box. The whole manifold (contactManifold),
+/// halfspace, another box-like superellipsoid, a box, and a floor of 8 × 8 cells of two
+/// triangles (a BVHModel, its regions from contactManifolds, FCL's collide with
+/// MeshContacts::kRegions; no warm start). The whole manifold (contactManifold),
 /// FCL's collide() with four contacts (the manifold's places), and the one-contact collide() of
 /// the same pair as the baseline, measured in the same run. The warm start: the body moving
 /// along a closed path of 64 steps (turning by about 1e-3 rad and moving 5e-3 of its size a
 /// step), the reduced places only (outline_area_tolerance 1), fresh and warm-started from the
 /// step before.
-enum class ManifoldPartner { kHalfspace, kSuperellipsoid, kBox };
+enum class ManifoldPartner { kHalfspace, kSuperellipsoid, kBox, kMesh };
 enum class ManifoldCall { kOneContact, kFourContacts, kManifold, kStepFresh, kStepWarm };
 
 void runManifold(benchmark::State& state, ManifoldPartner partner, ManifoldCall call) {
@@ -210,9 +213,28 @@ void runManifold(benchmark::State& state, ManifoldPartner partner, ManifoldCall 
   } else if (partner == ManifoldPartner::kSuperellipsoid) {
     other = std::make_shared<Superellipsoid<double>>(0.6, 0.5, 0.3, 0.2, 0.2);
     half_height = 0.3;
-  } else {
+  } else if (partner == ManifoldPartner::kBox) {
     other = std::make_shared<fcl::Box<double>>(1.2, 1.0, 0.6);
     half_height = 0.3;
+  } else {
+    std::vector<Vector3<double>> vertices;
+    std::vector<fcl::Triangle> triangles;
+    for (int i = 0; i <= 8; ++i) {
+      for (int j = 0; j <= 8; ++j) vertices.emplace_back(-2 + 0.5 * i, -2 + 0.5 * j, 0);
+    }
+    for (int i = 0; i < 8; ++i) {
+      for (int j = 0; j < 8; ++j) {
+        const int c = i * 9 + j;
+        triangles.emplace_back(c, c + 9, c + 10);
+        triangles.emplace_back(c, c + 10, c + 1);
+      }
+    }
+    auto floor = std::make_shared<fcl::BVHModel<fcl::OBBRSS<double>>>();
+    floor->beginModel();
+    floor->addSubModel(vertices, triangles);
+    floor->endModel();
+    other = floor;
+    body->setMeshContacts(MeshContacts::kRegions);
   }
   const bool path = call == ManifoldCall::kStepFresh || call == ManifoldCall::kStepWarm;
   std::mt19937 rng(52);
@@ -241,7 +263,11 @@ void runManifold(benchmark::State& state, ManifoldPartner partner, ManifoldCall 
   ManifoldWarmStart<double> warm;
   std::size_t i = 0;
   for (auto _ : state) {
-    if (call == ManifoldCall::kManifold) {
+    if (partner == ManifoldPartner::kMesh && call == ManifoldCall::kManifold) {
+      benchmark::DoNotOptimize(contactManifolds(*body, poses[i], *other, X_other));
+    } else if (partner == ManifoldPartner::kMesh && call == ManifoldCall::kStepFresh) {
+      benchmark::DoNotOptimize(contactManifolds(*body, poses[i], *other, X_other, points_only));
+    } else if (call == ManifoldCall::kManifold) {
       benchmark::DoNotOptimize(contactManifold(*body, poses[i], *other, X_other));
     } else if (call == ManifoldCall::kStepFresh) {
       benchmark::DoNotOptimize(contactManifold(*body, poses[i], *other, X_other, points_only));
@@ -359,14 +385,16 @@ void registerAll() {
                                    });
     }
   }
-  for (const auto& [name, partner] : {std::pair{"halfspace", ManifoldPartner::kHalfspace},
-                                      std::pair{"superellipsoid", ManifoldPartner::kSuperellipsoid},
-                                      std::pair{"box", ManifoldPartner::kBox}}) {
+  for (const auto& [name, partner] :
+       {std::pair{"halfspace", ManifoldPartner::kHalfspace},
+        std::pair{"superellipsoid", ManifoldPartner::kSuperellipsoid},
+        std::pair{"box", ManifoldPartner::kBox}, std::pair{"mesh", ManifoldPartner::kMesh}}) {
     for (const auto& [prefix, call] : {std::pair{"OneContact/", ManifoldCall::kOneContact},
                                        std::pair{"FourContacts/", ManifoldCall::kFourContacts},
                                        std::pair{"Manifold/", ManifoldCall::kManifold},
                                        std::pair{"ManifoldStepFresh/", ManifoldCall::kStepFresh},
                                        std::pair{"ManifoldStepWarm/", ManifoldCall::kStepWarm}}) {
+      if (partner == ManifoldPartner::kMesh && call == ManifoldCall::kStepWarm) continue;
       benchmark::RegisterBenchmark((std::string(prefix) + name).c_str(),
                                    [partner = partner, call = call](benchmark::State& state) {
                                      runManifold(state, partner, call);

@@ -16,8 +16,9 @@
 /// the deepest place and span the region's area.
 ///
 /// Answered for the other geometry being a Superellipsoid, fcl::Sphere, Ellipsoid, Box, Convex,
-/// TriangleP, Capsule, Cylinder, Cone, Halfspace and Plane. For BVH models the call refuses
-/// (std::invalid_argument naming the node type): their regions are not built yet.
+/// TriangleP, Capsule, Cylinder, Cone, Halfspace and Plane (contactManifold), and a triangle mesh
+/// (fcl::BVHModel of any BV type), which may touch the shape in several regions
+/// (contactManifolds).
 
 #include <fcl/geometry/collision_geometry.h>
 
@@ -39,8 +40,12 @@ struct ManifoldOptions {
   /// is a polygon (a polytope's face).
   int outline_samples = 8;
   S outline_area_tolerance = S(0.005);
-  /// The most reduced contact points (≥ 1).
+  /// The most reduced contact points (≥ 1), per region.
   int max_points = 4;
+  /// A triangle mesh's regions (contactManifolds): a triangle's region joins a deeper one's
+  /// where their normals are within this angle (radians, in [0, π/2]); 0 merges coplanar
+  /// triangles only (to rounding: use a tiny angle).
+  S merge_angle = S(0.05);
 };
 
 /// One place of the region: the points of the two surfaces there, the middle between them on
@@ -91,6 +96,23 @@ ContactManifold<S> contactManifold(const Superellipsoid<S>& shape, const fcl::Tr
                                    const fcl::CollisionGeometry<S>& other,
                                    const fcl::Transform3<S>& X_WO,
                                    const ManifoldOptions<S>& options, ManifoldWarmStart<S>& warm);
+
+/// Every contact region of the superellipsoid `shape` at X_WS and `other` at X_WO, deepest
+/// first: none where they are apart by more than the patch tolerance.
+/// - A triangle mesh (fcl::BVHModel of any BV type) is a surface: each triangle within the
+///   patch tolerance is a pair of its own (the shape and that triangle as an fcl::TriangleP)
+///   with its region, and a triangle's region joins the first deeper one whose normal is within
+///   `options.merge_angle` of its own. A merged region keeps its deepest triangle's normal and
+///   distance; its polygon is the convex hull of its triangles' polygons on that triangle's
+///   contact plane, and its points are reduced from them as one region's are. A point cloud is
+///   refused (it has no surface).
+/// - Every other geometry contactManifold answers: its region, if any.
+template <typename S>
+std::vector<ContactManifold<S>> contactManifolds(const Superellipsoid<S>& shape,
+                                                 const fcl::Transform3<S>& X_WS,
+                                                 const fcl::CollisionGeometry<S>& other,
+                                                 const fcl::Transform3<S>& X_WO,
+                                                 const ManifoldOptions<S>& options = {});
 
 }  // namespace fcl_superellipsoid
 

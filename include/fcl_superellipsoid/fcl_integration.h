@@ -52,7 +52,11 @@
 ///   pos = the vertex (world), normal = the superellipsoid's outward normal at the vertex's
 ///   nearest point, signed to point from o1 to o2, penetration_depth = the vertex's depth.
 ///   With request.enable_contact = false the contacts carry zero pos, normal and depth, and
-///   the search stops at num_max_contacts penetrating vertices.
+///   the search stops at num_max_contacts penetrating vertices. Where the shape's
+///   meshContacts() is MeshContacts::kRegions, a triangle mesh (not a point cloud) is met as a
+///   surface instead: the places of its overlapping regions (contact_manifold.h,
+///   contactManifolds), deepest region first, at most four per region, each with the region's
+///   normal and its own depth, b of the mesh side the region's deepest triangle.
 /// - Through the solver-taking calls, FCL's signed-distance fallback turns a negative mesh
 ///   distance into a collide() with num_max_contacts = 1; that returns the deepest vertex, so
 ///   the depth is the same exact value, but FCL then sets both nearest points to the

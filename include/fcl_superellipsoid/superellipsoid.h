@@ -59,6 +59,17 @@ template <typename S>
 class ShapeCaches;  // what the solvers keep per shape; opaque to users
 }  // namespace detail
 
+/// How FCL's collide meets a triangle mesh (an fcl::BVHModel with triangles) against a
+/// superellipsoid (Superellipsoid::setMeshContacts; docs/usage.md → "Contact manifolds").
+enum class MeshContacts {
+  /// One contact per penetrating vertex, the deepest first (the reference paper's model, for
+  /// cloth and point clouds); distance queries always take the vertices.
+  kVertices,
+  /// The mesh as a surface: the places of its contact regions (contactManifolds), at most four
+  /// per region, deepest region first, each with its region's normal and its own depth.
+  kRegions,
+};
+
 /// A superellipsoid centred at the origin of its frame, axis-aligned in that frame.
 ///
 /// Exponents are accepted in the open interval (0, 2), where the shape is convex and
@@ -135,6 +146,11 @@ class FSE_EXPORT Superellipsoid : public fcl::ShapeBase<S> {
   const DistanceOptions<S>& queryOptions() const { return query_options_; }
   /// @throws std::invalid_argument naming the bad value (see validateOptions).
   void setQueryOptions(const DistanceOptions<S>& options);
+  /// How FCL's collide meets a triangle mesh against this shape. Default: kVertices. Point
+  /// clouds are always met by their vertices.
+  MeshContacts meshContacts() const { return mesh_contacts_; }
+  /// @throws std::invalid_argument for a value that is not one of MeshContacts'.
+  void setMeshContacts(MeshContacts contacts);
 
   // --- fcl::CollisionGeometry interface -------------------------------------------------
   /// Tight box ±a_i; aabb_center = 0, aabb_radius = ‖a‖.
@@ -155,6 +171,7 @@ class FSE_EXPORT Superellipsoid : public fcl::ShapeBase<S> {
   S eps1_;
   S eps2_;
   DistanceOptions<S> query_options_;
+  MeshContacts mesh_contacts_ = MeshContacts::kVertices;
   friend class detail::ShapeCaches<S>;
   std::shared_ptr<const detail::ShapeCaches<S>> caches_;  // never null
 };

@@ -52,6 +52,19 @@ class Contact(NamedTuple):
     normal: npt.NDArray[np.float64]
     depth: float
 
+class ManifoldPlaces(NamedTuple):
+    position: npt.NDArray[np.float64]
+    point1: npt.NDArray[np.float64]
+    point2: npt.NDArray[np.float64]
+    depth: npt.NDArray[np.float64]
+
+class ContactManifold(NamedTuple):
+    normal: npt.NDArray[np.float64]
+    distance: float
+    patch_tolerance: float
+    polygon: ManifoldPlaces
+    points: ManifoldPlaces
+
 class Shape: ...
 
 class Superellipsoid(Shape):
@@ -168,6 +181,13 @@ class Halfspace(Shape):
 class Plane(Shape):
     def __init__(self, normal: ArrayLike, offset: float) -> None: ...
 
+class Mesh(Shape):
+    def __init__(self, vertices: ArrayLike, triangles: ArrayLike) -> None: ...
+    @property
+    def num_vertices(self) -> int: ...
+    @property
+    def num_triangles(self) -> int: ...
+
 def distance(shape1: Shape, pose1: Pose, shape2: Shape, pose2: Pose) -> PairDistance: ...
 def distance_gradients(
     shape1: Shape, pose1: Pose, shape2: Shape, pose2: Pose
@@ -175,3 +195,15 @@ def distance_gradients(
 def collide(
     shape1: Shape, pose1: Pose, shape2: Shape, pose2: Pose, max_contacts: int = 1
 ) -> list[Contact]: ...
+def contact_manifolds(
+    shape1: Shape,
+    pose1: Pose,
+    shape2: Shape,
+    pose2: Pose,
+    *,
+    patch_tolerance: Optional[float] = None,
+    max_points: int = 4,
+    outline_samples: int = 8,
+    outline_area_tolerance: float = 0.005,
+    merge_angle: float = 0.05,
+) -> list[ContactManifold]: ...

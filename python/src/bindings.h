@@ -24,6 +24,8 @@ ShapeClass bindShape(py::module_& m);
 void bindPointQueries(py::module_& m, ShapeClass& shape);
 /// pair_queries.cpp: FCL's shapes and the pair queries distance() and collide().
 void bindPairQueries(py::module_& m);
+/// manifold_queries.cpp: Mesh and contact_manifolds().
+void bindManifoldQueries(py::module_& m);
 
 }  // namespace python
 }  // namespace fcl_superellipsoid

@@ -10,4 +10,5 @@ PYBIND11_MODULE(_core, m) {
   python::ShapeClass shape = python::bindShape(m);
   python::bindPointQueries(m, shape);
   python::bindPairQueries(m);
+  python::bindManifoldQueries(m);
 }

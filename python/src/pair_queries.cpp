@@ -316,9 +316,10 @@ returned normal.)doc");
   m.def("collide", &pairCollide, py::arg("shape1"), py::arg("pose1"), py::arg("shape2"),
         py::arg("pose2"), py::arg("max_contacts") = 1, R"doc(
 The contacts of two overlapping posed shapes, one of them a Superellipsoid: a list of
-Contact(position, normal, depth), empty when they touch or are apart. One contact per shape pair:
-position halfway between the witnesses, normal from shape 1 to shape 2, depth the penetration
-depth (= -distance).)doc");
+Contact(position, normal, depth), empty when they touch or are apart. One contact: position
+halfway between the witnesses, normal from shape 1 to shape 2, depth the penetration depth
+(= -distance). max_contacts > 1: the places of the pair's contact region (at most four, the
+deepest first, each with its own depth; contact_manifolds() gives the whole region).)doc");
 }
 
 }  // namespace python

@@ -1,6 +1,6 @@
-// The public contact manifold (contact_manifold.h): the pair's row of pair_kinds.h answers the
+// The public contact manifolds (contact_manifold.h): the pair's row of pair_kinds.h answers the
 // hit and gives the other geometry's region body; narrowphase/contact_region.h builds the
-// region.
+// region; a triangle mesh's regions come from mesh_manifold.h.
 
 #include "fcl_glue/contact_manifold.h"
 
@@ -9,6 +9,7 @@
 
 #include "common/coordinate_range.h"
 #include "common/invalid_argument.h"
+#include "fcl_glue/mesh_manifold.h"
 #include "narrowphase/contact_region.h"
 
 namespace fcl_superellipsoid {
@@ -32,6 +33,14 @@ void checkOptions(const char* where, const ManifoldOptions<S>& options) {
   if (!(options.max_points >= 1)) {
     throwInvalidArgument(where, "options.max_points must be >= 1", options.max_points);
   }
+  if (!(options.merge_angle >= S(0) && options.merge_angle <= S(M_PI / 2))) {
+    throwInvalidArgument(where, "options.merge_angle must be in [0, pi/2]", options.merge_angle);
+  }
+}
+
+template <typename S>
+S patchTolerance(const ManifoldOptions<S>& options, const Superellipsoid<S>& shape) {
+  return options.patch_tolerance > S(0) ? options.patch_tolerance : S(1e-3) * shape.size();
 }
 
 }  // namespace
@@ -39,8 +48,7 @@ void checkOptions(const char* where, const ManifoldOptions<S>& options) {
 template <typename S>
 ContactManifold<S> pairManifold(const Pair<S>& pair, const PairKind<S>& kind, const PairHit<S>& hit,
                                 const ManifoldOptions<S>& options, ManifoldWarmStart<S>* warm) {
-  const S tolerance =
-      options.patch_tolerance > S(0) ? options.patch_tolerance : S(1e-3) * pair.shape->size();
+  const S tolerance = patchTolerance(options, *pair.shape);
   const std::unique_ptr<RegionBody<S>> shape = regionBody(*pair.shape, *pair.X_WS);
   const std::unique_ptr<RegionBody<S>> other = kind.region(pair, hit);
   // A warm start's points go to the world and back, each in its geometry's frame; a set with a
@@ -91,7 +99,15 @@ ContactManifold<S> manifold(const Superellipsoid<S>& shape, const fcl::Transform
   const detail::PairKind<S>* kind = detail::findPairKind<S>(pair.other_type);
   std::optional<detail::PairHit<S>> hit;
   if (kind != nullptr && kind->region != nullptr) hit = kind->answer(pair, kWhere);
-  if (!hit) detail::throwUnsupportedPartner(kWhere, other);
+  if (!hit) {
+    if (kind != nullptr && kind->form == detail::PairForm::kMesh) {
+      detail::throwInvalidArgument(kWhere,
+                                   "a BVH model may touch the shape in several regions: ask "
+                                   "contactManifolds for them (its node type)",
+                                   detail::nodeTypeName(other.getNodeType()));
+    }
+    detail::throwUnsupportedPartner(kWhere, other);
+  }
   return detail::pairManifold(pair, *kind, *hit, options, warm);
 }
 
@@ -113,6 +129,30 @@ ContactManifold<S> contactManifold(const Superellipsoid<S>& shape, const fcl::Tr
   return manifold(shape, X_WS, other, X_WO, options, &warm);
 }
 
+template <typename S>
+std::vector<ContactManifold<S>> contactManifolds(const Superellipsoid<S>& shape,
+                                                 const fcl::Transform3<S>& X_WS,
+                                                 const fcl::CollisionGeometry<S>& other,
+                                                 const fcl::Transform3<S>& X_WO,
+                                                 const ManifoldOptions<S>& options) {
+  constexpr const char* kWhere = "contactManifolds";
+  detail::checkPose(kWhere, "X_WS", X_WS);
+  detail::checkPose(kWhere, "X_WO", X_WO);
+  detail::checkOptions(kWhere, options);
+  const detail::Pair<S> pair = detail::makePair<S>(&shape, X_WS, &other, X_WO);
+  if (std::optional<std::vector<ContactManifold<S>>> regions =
+          detail::meshManifolds(pair, options, detail::patchTolerance(options, shape), kWhere)) {
+    return std::move(*regions);
+  }
+  const detail::PairKind<S>* kind = detail::findPairKind<S>(pair.other_type);
+  std::optional<detail::PairHit<S>> hit;
+  if (kind != nullptr && kind->region != nullptr) hit = kind->answer(pair, kWhere);
+  if (!hit) detail::throwUnsupportedPartner(kWhere, other);
+  ContactManifold<S> region = detail::pairManifold(pair, *kind, *hit, options);
+  if (region.points.empty()) return {};
+  return {std::move(region)};
+}
+
 #define FSE_INSTANTIATE_CONTACT_MANIFOLD(S)                                                  \
   template ContactManifold<S> contactManifold(                                               \
       const Superellipsoid<S>&, const fcl::Transform3<S>&, const fcl::CollisionGeometry<S>&, \
@@ -122,7 +162,10 @@ ContactManifold<S> contactManifold(const Superellipsoid<S>& shape, const fcl::Tr
       const fcl::Transform3<S>&, const ManifoldOptions<S>&, ManifoldWarmStart<S>&);          \
   template ContactManifold<S> detail::pairManifold(                                          \
       const detail::Pair<S>&, const detail::PairKind<S>&, const detail::PairHit<S>&,         \
-      const ManifoldOptions<S>&, ManifoldWarmStart<S>*);
+      const ManifoldOptions<S>&, ManifoldWarmStart<S>*);                                     \
+  template std::vector<ContactManifold<S>> contactManifolds(                                 \
+      const Superellipsoid<S>&, const fcl::Transform3<S>&, const fcl::CollisionGeometry<S>&, \
+      const fcl::Transform3<S>&, const ManifoldOptions<S>&);
 FSE_INSTANTIATE_CONTACT_MANIFOLD(float)
 FSE_INSTANTIATE_CONTACT_MANIFOLD(double)
 

@@ -1,55 +1,13 @@
 #include "fcl_glue/mesh_pair.h"
 
-#include <fcl/geometry/bvh/BVH_model.h>
-#include <fcl/math/bv/AABB.h>
-#include <fcl/math/bv/OBB.h>
-#include <fcl/math/bv/OBBRSS.h>
-#include <fcl/math/bv/RSS.h>
-#include <fcl/math/bv/kDOP.h>
-#include <fcl/math/bv/kIOS.h>
-
 #include <limits>
-#include <type_traits>
 
+#include "fcl_glue/bv_types.h"
 #include "fcl_glue/vertex_traversal.h"
 
 namespace fcl_superellipsoid {
 namespace detail {
 namespace {
-
-/// Calls f(model) with the BVHModel<BV> behind g for FCL's eight BV types; false if g is
-/// not one of them.
-template <typename S, typename F>
-bool visitBvh(const fcl::CollisionGeometry<S>* g, F&& f) {
-  if (g->getObjectType() != fcl::OT_BVH) return false;
-  auto as = [&](auto* tag) {
-    using BV = std::remove_pointer_t<decltype(tag)>;
-    const auto* model = dynamic_cast<const fcl::BVHModel<BV>*>(g);
-    if (model == nullptr) return false;
-    f(*model);
-    return true;
-  };
-  switch (g->getNodeType()) {
-    case fcl::BV_AABB:
-      return as(static_cast<fcl::AABB<S>*>(nullptr));
-    case fcl::BV_OBB:
-      return as(static_cast<fcl::OBB<S>*>(nullptr));
-    case fcl::BV_RSS:
-      return as(static_cast<fcl::RSS<S>*>(nullptr));
-    case fcl::BV_kIOS:
-      return as(static_cast<fcl::kIOS<S>*>(nullptr));
-    case fcl::BV_OBBRSS:
-      return as(static_cast<fcl::OBBRSS<S>*>(nullptr));
-    case fcl::BV_KDOP16:
-      return as(static_cast<fcl::KDOP<S, 16>*>(nullptr));
-    case fcl::BV_KDOP18:
-      return as(static_cast<fcl::KDOP<S, 18>*>(nullptr));
-    case fcl::BV_KDOP24:
-      return as(static_cast<fcl::KDOP<S, 24>*>(nullptr));
-    default:
-      return false;
-  }
-}
 
 template <typename S>
 PairHit<S> fromVertex(const VertexHit<S>& h) {

@@ -11,6 +11,7 @@
 
 #include "common/coordinate_range.h"
 #include "fcl_glue/contact_manifold.h"
+#include "fcl_glue/mesh_manifold.h"
 #include "fcl_glue/mesh_pair.h"
 #include "fcl_glue/pair.h"
 #include "fcl_glue/pair_kinds.h"
@@ -58,6 +59,35 @@ S pairDistance(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf
   return std::numeric_limits<S>::max();
 }
 
+namespace {
+
+/// The overlapping regions of the shape and a triangle mesh as FCL's contacts, deepest region
+/// first: each region's places (at most four, and at most the room left), the deepest first,
+/// with the region's normal and their own depths (0 on a region's rim) and its first triangle.
+template <typename S>
+void regionsCollide(const Pair<S>& pair, const fcl::CollisionRequest<S>& request, std::size_t room,
+                    fcl::CollisionResult<S>& result) {
+  ManifoldOptions<S> options;
+  options.outline_area_tolerance = S(1);  // the places only: no refined outline
+  options.max_points = static_cast<int>(std::min<std::size_t>(room, 4));
+  std::vector<int> facets;
+  const std::optional<std::vector<ContactManifold<S>>> regions =
+      meshManifolds(pair, options, S(1e-3) * pair.shape->size(), "superellipsoid collide", &facets);
+  for (std::size_t r = 0; r < regions->size() && result.numContacts() < request.num_max_contacts;
+       ++r) {
+    const ContactManifold<S>& region = (*regions)[r];
+    if (!(region.distance < S(0))) continue;  // touching within the tolerance only
+    for (const ManifoldPoint<S>& p : region.points) {
+      if (result.numContacts() >= request.num_max_contacts) break;
+      const PairHit<S> at{std::min(-p.depth, S(0)), p.on_other, p.on_shape, region.normal,
+                          facets[r]};
+      addContact(pair, at, p.position, request.enable_contact, result);
+    }
+  }
+}
+
+}  // namespace
+
 template <typename S>
 std::size_t pairCollide(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1,
                         const fcl::CollisionGeometry<S>* o2, const fcl::Transform3<S>& tf2,
@@ -71,6 +101,10 @@ std::size_t pairCollide(const fcl::CollisionGeometry<S>* o1, const fcl::Transfor
   if (const PairKind<S>* kind = kindOf(pair)) {
     const std::size_t room = request.num_max_contacts - result.numContacts();
     if (kind->form == PairForm::kMesh) {
+      if (pair.shape->meshContacts() == MeshContacts::kRegions && isTriangleMesh(pair)) {
+        regionsCollide(pair, request, room, result);
+        return result.numContacts();
+      }
       if (meshCollide(pair, request, room, result)) return result.numContacts();
     } else if (const std::optional<PairHit<S>> hit = kind->answer(pair, "superellipsoid collide")) {
       if (hit->distance >= S(0)) return result.numContacts();

@@ -1,12 +1,5 @@
 #include "fcl_glue/vertex_traversal.h"
 
-#include <fcl/math/bv/AABB.h>
-#include <fcl/math/bv/OBB.h>
-#include <fcl/math/bv/OBBRSS.h>
-#include <fcl/math/bv/RSS.h>
-#include <fcl/math/bv/kDOP.h>
-#include <fcl/math/bv/kIOS.h>
-
 #include <algorithm>
 #include <array>
 #include <limits>
@@ -15,6 +8,7 @@
 
 #include "batch/batch_kernel.h"
 #include "common/tasks.h"
+#include "fcl_glue/bv_types.h"
 #include "fcl_glue/bvh_node.h"
 #include "fcl_superellipsoid/batch_distance.h"
 #include "fcl_superellipsoid/diagnostics.h"
@@ -31,43 +25,6 @@ VertexTraversalStats& vertexTraversalStats() {
 
 namespace detail {
 namespace {
-
-/// A box swept by a sphere, in the model's frame M: what every BV type is bounded as.
-template <typename S>
-struct SweptBox {
-  Vector3<S> centre;
-  fcl::Matrix3<S> axes;  // columns
-  Vector3<S> half_extents;
-  S radius = 0;
-};
-
-template <typename S>
-SweptBox<S> sweptBox(const fcl::AABB<S>& bv) {
-  return {bv.center(), fcl::Matrix3<S>::Identity(), S(0.5) * (bv.max_ - bv.min_), S(0)};
-}
-template <typename S>
-SweptBox<S> sweptBox(const fcl::OBB<S>& bv) {
-  return {bv.To, bv.axis, bv.extent, S(0)};
-}
-template <typename S>
-SweptBox<S> sweptBox(const fcl::RSS<S>& bv) {
-  return {bv.center(), bv.axis, Vector3<S>(S(0.5) * bv.l[0], S(0.5) * bv.l[1], S(0)), bv.r};
-}
-template <typename S>
-SweptBox<S> sweptBox(const fcl::kIOS<S>& bv) {
-  return sweptBox(bv.obb);
-}
-template <typename S>
-SweptBox<S> sweptBox(const fcl::OBBRSS<S>& bv) {
-  return sweptBox(bv.obb);
-}
-/// A k-DOP's first three slab pairs are the x, y, z ones: its bounding box.
-template <typename S, std::size_t N>
-SweptBox<S> sweptBox(const fcl::KDOP<S, N>& bv) {
-  const Vector3<S> lo(bv.dist(0), bv.dist(1), bv.dist(2));
-  const Vector3<S> hi(bv.dist(N / 2), bv.dist(N / 2 + 1), bv.dist(N / 2 + 2));
-  return {S(0.5) * (lo + hi), fcl::Matrix3<S>::Identity(), S(0.5) * (hi - lo), S(0)};
-}
 
 /// Subtrees with at most this many primitives are descended without bounding their BVs.
 constexpr int kUnboundedPrimitives = 16;
@@ -259,10 +216,6 @@ class VertexTraversal {
     if (i < 3) return box.axes.col(i);
     const S n = d.norm();
     return n > S(0) ? Vector3<S>(d / n) : Vector3<S>(box.axes.col(0));
-  }
-
-  static S boxHalfWidth(const SweptBox<S>& box, const Vector3<S>& u) {
-    return (box.axes.transpose() * u).cwiseAbs().dot(box.half_extents);
   }
 
   /// Appends the vertices of the subtree at `root` to subtree_, breadth first: each level's

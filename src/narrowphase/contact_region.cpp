@@ -5,12 +5,11 @@
 #include <limits>
 #include <utility>
 
+#include "narrowphase/region_reduction.h"
+
 namespace fcl_superellipsoid {
 namespace detail {
 namespace {
-
-template <typename S>
-using Vector2 = Eigen::Matrix<S, 2, 1>;
 
 /// The contact plane: through `origin`, normal n, with n = e1 × e2.
 template <typename S>
@@ -28,18 +27,6 @@ struct ContactPlane {
   }
   Vector3<S> at(const Vector2<S>& y) const { return origin + y.x() * e1 + y.y() * e2; }
 };
-
-/// A place with its plane coordinates.
-template <typename S>
-struct Place {
-  ManifoldPoint<S> point;
-  Vector2<S> y;
-};
-
-template <typename S>
-S cross2(const Vector2<S>& a, const Vector2<S>& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
 
 /// A vertex of an outline: its plane coordinates and, where known exactly, the body's surface
 /// point above it (the farthest along the cap's direction on that line).
@@ -255,24 +242,10 @@ std::vector<OutlinePoint<S>> convexOutline(std::vector<OutlinePoint<S>> outline,
     turning += std::atan2(cross2(e0, e1), e0.dot(e1));
   }
   if (convex && std::abs(turning - S(2 * M_PI)) < S(0.5)) return outline;
-  std::sort(outline.begin(), outline.end(), [](const OutlinePoint<S>& a, const OutlinePoint<S>& b) {
-    return a.y.x() < b.y.x() || (a.y.x() == b.y.x() && a.y.y() < b.y.y());
-  });
-  std::vector<OutlinePoint<S>> hull(2 * n);
-  std::size_t k = 0;
-  for (int pass = 0; pass < 2; ++pass) {
-    const std::size_t start = k;
-    for (std::size_t i = 0; i < n; ++i) {
-      const OutlinePoint<S>& p = pass == 0 ? outline[i] : outline[n - 1 - i];
-      while (k >= start + 2 && cross2(Vector2<S>(hull[k - 1].y - hull[k - 2].y),
-                                      Vector2<S>(p.y - hull[k - 2].y)) <= S(0)) {
-        --k;
-      }
-      hull[k++] = p;
-    }
-    --k;  // the last point starts the other chain
-  }
-  hull.resize(k);
+  std::vector<Vector2<S>> points;
+  for (const OutlinePoint<S>& o : outline) points.push_back(o.y);
+  std::vector<OutlinePoint<S>> hull;
+  for (const std::size_t i : hullOrder(points)) hull.push_back(outline[i]);
   return hull;
 }
 
@@ -303,80 +276,16 @@ std::vector<OutlinePoint<S>> clipConvex(std::vector<OutlinePoint<S>> subject,
   return subject;
 }
 
-/// The area of the convex hull of the points (monotone chain).
+/// The region of `a` against the bodies `pieces` at the hit (contactRegion, facetsRegion): a's
+/// cap outlined once, clipped by each piece's cap, the clipped vertices measured along n against
+/// that piece; of several pieces the region is the convex hull of their places. The hit's place
+/// is a candidate of the reduction where `hit_is_a_place`.
 template <typename S>
-S hullArea(std::vector<Vector2<S>> pts) {
-  if (pts.size() < 3) return S(0);
-  std::sort(pts.begin(), pts.end(), [](const Vector2<S>& a, const Vector2<S>& b) {
-    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-  });
-  std::vector<Vector2<S>> hull(2 * pts.size());
-  std::size_t k = 0;
-  for (int pass = 0; pass < 2; ++pass) {
-    const std::size_t start = k;
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-      const Vector2<S>& p = pass == 0 ? pts[i] : pts[pts.size() - 1 - i];
-      while (k >= start + 2 &&
-             cross2(Vector2<S>(hull[k - 1] - hull[k - 2]), Vector2<S>(p - hull[k - 2])) <= S(0)) {
-        --k;
-      }
-      hull[k++] = p;
-    }
-    --k;  // the last point starts the other chain
-  }
-  S area = S(0);
-  for (std::size_t i = 0; i < k; ++i) area += cross2(hull[i], hull[(i + 1) % k]);
-  return S(0.5) * area;
-}
-
-/// At most `max_points` of the candidates: the deepest (of those within `tie` of the deepest
-/// depth, the first: the outline's vertices come before the hit's place, so that a flat
-/// contact is held at its corners), then the farthest
-/// from it, then each time the one that adds the most area to their hull; fewer where the rest
-/// add no more than `merge` (length) or merge² (area).
-template <typename S>
-std::vector<ManifoldPoint<S>> reduce(const std::vector<Place<S>>& candidates, int max_points, S tie,
-                                     S merge) {
-  std::vector<ManifoldPoint<S>> out;
-  if (candidates.empty()) return out;
-  S deepest = -std::numeric_limits<S>::infinity();
-  for (const Place<S>& c : candidates) deepest = std::max(deepest, c.point.depth);
-  std::size_t first = 0;
-  while (candidates[first].point.depth < deepest - tie) ++first;
-  std::vector<std::size_t> chosen{first};
-  std::vector<Vector2<S>> hull{candidates[first].y};
-  while (static_cast<int>(chosen.size()) < max_points) {
-    std::size_t best = candidates.size();
-    S best_gain = chosen.size() == 1 ? merge : merge * merge;
-    const S base = hullArea(hull);
-    for (std::size_t i = 0; i < candidates.size(); ++i) {
-      if (std::find(chosen.begin(), chosen.end(), i) != chosen.end()) continue;
-      S gain;
-      if (chosen.size() == 1) {
-        gain = (candidates[i].y - hull[0]).norm();
-      } else {
-        hull.push_back(candidates[i].y);
-        gain = hullArea(hull) - base;
-        hull.pop_back();
-      }
-      // A later candidate must gain clearly more: ties go to the earlier one, whatever the
-      // rounding (the order of the candidates turns with the pair).
-      if (gain > best_gain * (S(1) + S(1e-6))) best = i, best_gain = gain;
-    }
-    if (best == candidates.size()) break;
-    chosen.push_back(best);
-    hull.push_back(candidates[best].y);
-  }
-  for (std::size_t i : chosen) out.push_back(candidates[i].point);
-  return out;
-}
-
-}  // namespace
-
-template <typename S>
-ContactManifold<S> contactRegion(const RegionBody<S>& a, const RegionBody<S>& b,
-                                 const PairHit<S>& hit, const Matrix3<S>& R_WS, S tolerance, S size,
-                                 const ManifoldOptions<S>& options, RegionWarmStart<S>* warm) {
+ContactManifold<S> regionOfPieces(const RegionBody<S>& a,
+                                  const std::vector<const RegionBody<S>*>& pieces,
+                                  const PairHit<S>& hit, bool hit_is_a_place,
+                                  const Matrix3<S>& R_WS, S tolerance, S size,
+                                  const ManifoldOptions<S>& options, RegionWarmStart<S>* warm) {
   ContactManifold<S> out;
   out.normal = hit.normal.normalized();
   out.distance = hit.distance;
@@ -392,32 +301,29 @@ ContactManifold<S> contactRegion(const RegionBody<S>& a, const RegionBody<S>& b,
   const S merge = S(64) * std::numeric_limits<S>::epsilon() * size;
 
   // Each cap: the body beyond the other's supporting plane less the tolerance.
-  std::vector<OutlinePoint<S>> region =
+  const std::vector<OutlinePoint<S>> a_cap =
       convexOutline(capOutline(a, plane, n, S(hit.on_shape.dot(n) - thickness), hit.on_shape,
                                options, merge, warm != nullptr ? &warm->a : nullptr),
                     merge);
-  if (!b.unbounded()) {
-    const Vector3<S> m = -n;
-    region = clipConvex(
-        region,
-        convexOutline(capOutline(b, plane, m, S(hit.on_other.dot(m) - thickness), hit.on_other,
-                                 options, merge, warm != nullptr ? &warm->b : nullptr),
-                      merge));
-  }
-
-  // The depth at each vertex, along n: the shape's surface point is known where the vertex is
-  // one of its outline's, else measured; a vertex whose line misses a body by rounding (it is
-  // on a cap's rim) is measured a little towards the region's centroid.
-  Vector2<S> centroid = Vector2<S>::Zero();
-  for (const OutlinePoint<S>& o : region) centroid += o.y;
-  if (!region.empty()) centroid /= S(region.size());
-  std::vector<Place<S>> places;
-  for (const OutlinePoint<S>& o : region) {
+  const auto centroidOf = [](const std::vector<OutlinePoint<S>>& polygon) {
+    Vector2<S> centroid = Vector2<S>::Zero();
+    for (const OutlinePoint<S>& o : polygon) centroid += o.y;
+    return polygon.empty() ? centroid : Vector2<S>(centroid / S(polygon.size()));
+  };
+  // The place above y on the plane against b (the shape's surface point known if `known` is
+  // an exact outline point at y), or a little towards `centroid` where a line misses a body by
+  // rounding; std::nullopt where it still does. Rounding on bodies far apart in scale (a float
+  // sphere of radius 3.7e30 on a unit shape) can overflow a measurement: such a place is
+  // dropped like a missed one.
+  const auto measured = [&](const Vector2<S>& y0, const Vector2<S>& centroid,
+                            const RegionBody<S>& b,
+                            const OutlinePoint<S>* known) -> std::optional<Place<S>> {
     for (S pull : {S(0), S(1e-6), S(1e-3)}) {
-      const Vector2<S> y = o.y + pull * (centroid - o.y);
+      const Vector2<S> y = y0 + pull * (centroid - y0);
       const Vector3<S> at = plane.at(y);
-      const std::optional<S> up =
-          o.exact && pull == S(0) ? std::optional<S>((o.on - at).dot(n)) : a.extent(at, n);
+      const std::optional<S> up = known != nullptr && known->exact && pull == S(0)
+                                      ? std::optional<S>((known->on - at).dot(n))
+                                      : a.extent(at, n);
       const std::optional<S> down = b.extent(at, Vector3<S>(-n));
       if (!up || !down) continue;
       ManifoldPoint<S> p;
@@ -425,35 +331,135 @@ ContactManifold<S> contactRegion(const RegionBody<S>& a, const RegionBody<S>& b,
       p.on_other = at - *down * n;
       p.position = S(0.5) * (p.on_shape + p.on_other);
       p.depth = *up + *down;
-      // Rounding on bodies far apart in scale (a float sphere of radius 3.7e30 on a unit shape)
-      // can overflow a measurement: such a vertex is dropped like a missed one.
       if (!(p.on_shape.allFinite() && p.on_other.allFinite() && p.position.allFinite() &&
             std::isfinite(p.depth))) {
         continue;
       }
-      if (!places.empty() && (y - places.back().y).norm() <= merge) break;
-      places.push_back({p, y});
-      out.polygon.push_back(p);
-      break;
+      return Place<S>{p, y};
     }
+    return std::nullopt;
+  };
+  // The region's vertices, each with its piece and its piece's clipped polygon's centroid; of
+  // several pieces only those on the hull of them all are measured.
+  struct Vertex {
+    OutlinePoint<S> o;
+    const RegionBody<S>* piece;
+    Vector2<S> centroid;
+  };
+  std::vector<Vertex> vertices;
+  for (const RegionBody<S>* b : pieces) {
+    std::vector<OutlinePoint<S>> region = a_cap;
+    if (!b->unbounded()) {
+      const Vector3<S> m = -n;
+      region = clipConvex(
+          region,
+          convexOutline(
+              capOutline(*b, plane, m, S(hit.on_other.dot(m) - thickness), hit.on_other, options,
+                         merge, warm != nullptr && pieces.size() == 1 ? &warm->b : nullptr),
+              merge));
+    }
+    const Vector2<S> centroid = centroidOf(region);
+    for (const OutlinePoint<S>& o : region) vertices.push_back({o, b, centroid});
+  }
+  if (pieces.size() > 1) {
+    std::vector<Vector2<S>> ys;
+    for (const Vertex& v : vertices) ys.push_back(v.o.y);
+    std::vector<Vertex> hull;
+    for (const std::size_t i : hullOrder(ys)) hull.push_back(vertices[i]);
+    vertices = std::move(hull);
   }
 
-  // The deepest place, the hit's, is a candidate after the vertices.
-  ManifoldPoint<S> deepest;
-  deepest.on_shape = hit.on_shape;
-  deepest.on_other = hit.on_other;
-  deepest.position = plane.origin;
-  deepest.depth = -hit.distance;
-  if (out.polygon.empty()) out.polygon.push_back(deepest);
-  places.push_back({deepest, Vector2<S>::Zero()});
+  // The depth at each vertex, along n: the shape's surface point is known where the vertex is
+  // one of its outline's, else measured; a vertex whose line misses a body by rounding (it is on
+  // a cap's rim) is measured a little towards its piece's centroid.
+  std::vector<Place<S>> places;
+  for (const Vertex& v : vertices) {
+    if (const std::optional<Place<S>> p = measured(v.o.y, v.centroid, *v.piece, &v.o)) {
+      if (!places.empty() && (p->y - places.back().y).norm() <= merge) continue;
+      places.push_back(*p);
+    }
+  }
+  for (const Place<S>& p : places) out.polygon.push_back(p.point);
+
+  if (hit_is_a_place) {
+    // The deepest place, the hit's, is a candidate after the vertices.
+    ManifoldPoint<S> deepest;
+    deepest.on_shape = hit.on_shape;
+    deepest.on_other = hit.on_other;
+    deepest.position = plane.origin;
+    deepest.depth = -hit.distance;
+    if (out.polygon.empty()) out.polygon.push_back(deepest);
+    places.push_back({deepest, Vector2<S>::Zero()});
+  } else if (!places.empty()) {
+    // The shape's deepest point is off the pieces, so the region's deepest place is on its rim
+    // (the depth is concave on the plane): searched for along the two edges at the deepest
+    // vertex (golden sections), and a candidate after the vertices.
+    const auto deeper = [](const Place<S>& x, const Place<S>& y) {
+      return x.point.depth < y.point.depth;
+    };
+    const std::size_t k =
+        std::size_t(std::max_element(places.begin(), places.end(), deeper) - places.begin());
+    std::vector<OutlinePoint<S>> rim;
+    for (const Place<S>& p : places) rim.push_back({p.y, p.point.on_shape, false});
+    const Vector2<S> centroid = centroidOf(rim);
+    const auto depthAt = [&](const Vector2<S>& y) -> std::optional<Place<S>> {
+      for (const RegionBody<S>* b : pieces) {
+        if (std::optional<Place<S>> p = measured(y, centroid, *b, nullptr)) return p;
+      }
+      return std::nullopt;
+    };
+    Place<S> best = places[k];
+    for (const std::size_t j : {(k + 1) % places.size(), (k + places.size() - 1) % places.size()}) {
+      if (j == k) continue;
+      const Vector2<S> y0 = places[k].y, y1 = places[j].y;
+      const S golden = S(0.5) * (std::sqrt(S(5)) - S(1));
+      S lo = S(0), hi = S(1);
+      for (int it = 0; it < 48 && (hi - lo) * (y1 - y0).norm() > merge; ++it) {
+        const S t1 = hi - golden * (hi - lo), t2 = lo + golden * (hi - lo);
+        const std::optional<Place<S>> p1 = depthAt(Vector2<S>(y0 + t1 * (y1 - y0)));
+        const std::optional<Place<S>> p2 = depthAt(Vector2<S>(y0 + t2 * (y1 - y0)));
+        if (!p1 || !p2) break;
+        if (p1->point.depth > best.point.depth) best = *p1;
+        if (p2->point.depth > best.point.depth) best = *p2;
+        if (p1->point.depth >= p2->point.depth) {
+          hi = t2;
+        } else {
+          lo = t1;
+        }
+      }
+    }
+    out.distance = -best.point.depth;
+    places.push_back(best);
+  }
   out.points = reduce(places, options.max_points, tolerance, merge);
   return out;
 }
 
-#define FSE_INSTANTIATE_CONTACT_REGION(S)                                               \
-  template ContactManifold<S> contactRegion(const RegionBody<S>&, const RegionBody<S>&, \
-                                            const PairHit<S>&, const Matrix3<S>&, S, S, \
-                                            const ManifoldOptions<S>&, RegionWarmStart<S>*);
+}  // namespace
+
+template <typename S>
+ContactManifold<S> contactRegion(const RegionBody<S>& a, const RegionBody<S>& b,
+                                 const PairHit<S>& hit, const Matrix3<S>& R_WS, S tolerance, S size,
+                                 const ManifoldOptions<S>& options, RegionWarmStart<S>* warm) {
+  return regionOfPieces(a, {&b}, hit, true, R_WS, tolerance, size, options, warm);
+}
+
+template <typename S>
+ContactManifold<S> facetsRegion(const RegionBody<S>& a,
+                                const std::vector<const RegionBody<S>*>& facets,
+                                const PairHit<S>& hit, bool hit_on_facets, const Matrix3<S>& R_WS,
+                                S tolerance, S size, const ManifoldOptions<S>& options) {
+  return regionOfPieces(a, facets, hit, hit_on_facets, R_WS, tolerance, size, options,
+                        static_cast<RegionWarmStart<S>*>(nullptr));
+}
+
+#define FSE_INSTANTIATE_CONTACT_REGION(S)                                                      \
+  template ContactManifold<S> contactRegion(const RegionBody<S>&, const RegionBody<S>&,        \
+                                            const PairHit<S>&, const Matrix3<S>&, S, S,        \
+                                            const ManifoldOptions<S>&, RegionWarmStart<S>*);   \
+  template ContactManifold<S> facetsRegion(                                                    \
+      const RegionBody<S>&, const std::vector<const RegionBody<S>*>&, const PairHit<S>&, bool, \
+      const Matrix3<S>&, S, S, const ManifoldOptions<S>&);
 FSE_INSTANTIATE_CONTACT_REGION(float)
 FSE_INSTANTIATE_CONTACT_REGION(double)
 

@@ -62,6 +62,18 @@ ContactManifold<S> contactRegion(const RegionBody<S>& a, const RegionBody<S>& b,
                                  const ManifoldOptions<S>& options,
                                  RegionWarmStart<S>* warm = nullptr);
 
+/// The region of `a` against flat pieces of one surface (a mesh's facets that face the same way,
+/// each a RegionBody, world coordinates) at the hit (its normal, and its point on the surface
+/// fixing the contact plane and the cap's base): a's cap, outlined once, clipped by each facet,
+/// each clipped vertex measured along n against its facet; the region is the convex hull of those
+/// places. The hit's place is one of them where `hit_on_facets` (the shape's deepest point lies
+/// over a facet); else the region's distance is its deepest vertex's.
+template <typename S>
+ContactManifold<S> facetsRegion(const RegionBody<S>& a,
+                                const std::vector<const RegionBody<S>*>& facets,
+                                const PairHit<S>& hit, bool hit_on_facets, const Matrix3<S>& R_WS,
+                                S tolerance, S size, const ManifoldOptions<S>& options);
+
 }  // namespace detail
 }  // namespace fcl_superellipsoid
 

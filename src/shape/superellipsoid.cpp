@@ -96,6 +96,15 @@ void Superellipsoid<S>::setQueryOptions(const DistanceOptions<S>& options) {
 }
 
 template <typename S>
+void Superellipsoid<S>::setMeshContacts(MeshContacts contacts) {
+  if (contacts != MeshContacts::kVertices && contacts != MeshContacts::kRegions) {
+    detail::throwInvalidArgument("setMeshContacts", "contacts must be kVertices or kRegions",
+                                 static_cast<int>(contacts));
+  }
+  mesh_contacts_ = contacts;
+}
+
+template <typename S>
 S Superellipsoid<S>::gauge(const Vector3<S>& p_S) const {
   checkPoint("gauge", p_S);
   return detail::NestedNorm<S>::gauge(*this).value(p_S.cwiseAbs());

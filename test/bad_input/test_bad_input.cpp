@@ -178,9 +178,12 @@ TYPED_TEST(BadInputTest, PointDistance) {
 
 /// The refusals every call on one pair of shapes shares (contactManifold,
 /// pairDistanceDerivatives): `call(shape, X_WS, other, X_WO)` with a pose that is not finite, a
-/// mesh (its node type named) and another shape's bad parameters (as for every pair query).
+/// mesh (its node type named, with `mesh_requirement`) and another shape's bad parameters (as
+/// for every pair query).
 template <typename S, typename Call>
-void expectPairRefusals(const std::string& where, Call call) {
+void expectPairRefusals(
+    const std::string& where, Call call,
+    const std::string& mesh_requirement = "the other geometry must be a Superellipsoid") {
   const S nan = std::numeric_limits<S>::quiet_NaN();
   const Superellipsoid<S> shape(1, 1, 1, S(0.5), S(0.5));
   const fcl::Sphere<S> sphere(S(0.5));
@@ -192,8 +195,7 @@ void expectPairRefusals(const std::string& where, Call call) {
   expectRefused([&] { call(shape, X, sphere, bad); }, where, "the pose X_WO must be finite",
                 "(nan, 0, 0)");
   const auto mesh = makeBVHModel<fcl::OBBRSS<S>>(tessellate(shape, 8));
-  expectRefused([&] { call(shape, X, *mesh, X); }, where,
-                "the other geometry must be a Superellipsoid", "BV_OBBRSS");
+  expectRefused([&] { call(shape, X, *mesh, X); }, where, mesh_requirement, "BV_OBBRSS");
   const fcl::Sphere<S> bad_sphere(nan);
   expectRefused([&] { call(shape, X, bad_sphere, X); }, where,
                 "the other shape's radius must be finite", "nan");
@@ -203,7 +205,9 @@ TYPED_TEST(BadInputTest, ContactManifold) {
   using S = TypeParam;
   const S nan = TestFixture::nan;
   const std::string where = "contactManifold";
-  expectPairRefusals<S>(where, [](const auto&... args) { contactManifold(args...); });
+  expectPairRefusals<S>(
+      where, [](const auto&... args) { contactManifold(args...); },
+      "a BVH model may touch the shape in several regions: ask contactManifolds");
   const Superellipsoid<S> shape(1, 1, 1, S(0.5), S(0.5));
   const fcl::Sphere<S> sphere(S(0.5));
   const fcl::Transform3<S> X = fcl::Transform3<S>::Identity();
@@ -222,6 +226,49 @@ TYPED_TEST(BadInputTest, ContactManifold) {
                 "options.outline_area_tolerance must be finite and > 0", "0");
   expectRefused(with([](ManifoldOptions<S>& o) { o.max_points = 0; }), where,
                 "options.max_points must be >= 1", "0");
+  expectRefused(with([](ManifoldOptions<S>& o) { o.merge_angle = S(-0.1); }), where,
+                "options.merge_angle must be in [0, pi/2]", "-0.1");
+}
+
+TYPED_TEST(BadInputTest, ContactManifolds) {
+  using S = TypeParam;
+  const S nan = TestFixture::nan;
+  const std::string where = "contactManifolds";
+  const Superellipsoid<S> shape(1, 1, 1, S(0.5), S(0.5));
+  const fcl::Transform3<S> X = fcl::Transform3<S>::Identity();
+  fcl::Transform3<S> bad = X;
+  bad.translation() = Vector3<S>(nan, 0, 0);
+  const auto mesh = makeBVHModel<fcl::OBBRSS<S>>(tessellate(Superellipsoid<S>(2, 2, 2, 1, 1), 40));
+  expectRefused([&] { contactManifolds(shape, bad, *mesh, X); }, where,
+                "the pose X_WS must be finite", "(nan, 0, 0)");
+  expectRefused([&] { contactManifolds(shape, X, *mesh, bad); }, where,
+                "the pose X_WO must be finite", "(nan, 0, 0)");
+  ManifoldOptions<S> options;
+  options.merge_angle = S(2);
+  expectRefused([&] { contactManifolds(shape, X, *mesh, X, options); }, where,
+                "options.merge_angle must be in [0, pi/2]", "2");
+  fcl::BVHModel<fcl::OBBRSS<S>> cloud;
+  cloud.beginModel();
+  for (int k = 0; k < 4; ++k) cloud.addVertex(Vector3<S>(S(k & 1), S(k >> 1), S(0.1 * k)));
+  cloud.endModel();
+  expectRefused([&] { contactManifolds(shape, X, cloud, X); }, where,
+                "the other geometry must be a triangle mesh", "BVH_MODEL_POINTCLOUD");
+  // A vertex that is not finite in a triangle the model's BVH reaches (the BVH built before the
+  // vertex went bad: FCL's BVs of such a vertex bound nothing).
+  fcl::BVHModel<fcl::OBBRSS<S>> bad_mesh;
+  bad_mesh.beginModel();
+  bad_mesh.addTriangle(Vector3<S>(-2, -2, S(0.5)), Vector3<S>(2, -2, S(0.5)),
+                       Vector3<S>(0, 2, S(0.5)));
+  bad_mesh.endModel();
+  bad_mesh.vertices[2].x() = nan;
+  expectRefused([&] { contactManifolds(shape, X, bad_mesh, X); }, where,
+                "the other shape's vertex c must be finite", "(nan, 2, 0.5)");
+  const fcl::Sphere<S> bad_sphere(nan);
+  expectRefused([&] { contactManifolds(shape, X, bad_sphere, X); }, where,
+                "the other shape's radius must be finite", "nan");
+  Superellipsoid<S> settable(1, 1, 1, S(0.5), S(0.5));
+  expectRefused([&] { settable.setMeshContacts(static_cast<MeshContacts>(7)); }, "setMeshContacts",
+                "contacts must be kVertices or kRegions", "7");
 }
 
 TYPED_TEST(BadInputTest, PairDerivatives) {

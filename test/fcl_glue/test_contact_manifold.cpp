@@ -29,12 +29,17 @@
 #include "fcl_superellipsoid/contact_manifold.h"
 #include "fcl_superellipsoid/fcl_integration.h"
 #include "fcl_superellipsoid/tessellation.h"
+#include "region_construction.h"
 #include "test_helpers.h"
 
 namespace fcl_superellipsoid {
 namespace {
 
+using test::halfWidth;
+using test::polygonArea;
 using test::referenceGauge;
+using test::sectionScale;
+using test::superellipseArea;
 
 template <typename S>
 fcl::Transform3<S> randomPose(std::mt19937& rng, double reach) {
@@ -45,37 +50,6 @@ fcl::Transform3<S> randomPose(std::mt19937& rng, double reach) {
   X.linear() = q.toRotationMatrix();
   X.translation() = reach * Eigen::Vector3d(normal(rng), normal(rng), normal(rng));
   return X.cast<S>();
-}
-
-/// The area of the polygon of places, seen along n (shoelace in a basis of the plane ⊥ n).
-template <typename S>
-double polygonArea(const std::vector<ManifoldPoint<S>>& places, const Vector3<S>& n) {
-  const Eigen::Vector3d nd = n.template cast<double>();
-  const Eigen::Vector3d e1 = nd.unitOrthogonal(), e2 = nd.cross(e1);
-  double area = 0;
-  for (std::size_t i = 0; i < places.size(); ++i) {
-    const Eigen::Vector3d p = places[i].position.template cast<double>();
-    const Eigen::Vector3d q = places[(i + 1) % places.size()].position.template cast<double>();
-    area += p.dot(e1) * q.dot(e2) - p.dot(e2) * q.dot(e1);
-  }
-  return 0.5 * area;
-}
-
-/// The area of |x/a|^(2/ε) + |y/b|^(2/ε) ≤ 1: 4ab·Γ(1 + ε/2)²/Γ(1 + ε).
-double superellipseArea(double a, double b, double eps) {
-  return 4 * a * b * std::tgamma(1 + eps / 2) * std::tgamma(1 + eps / 2) / std::tgamma(1 + eps);
-}
-
-/// The scale s of the cross-section at depth τ below the top z = a3 (radii a1·s, a2·s).
-double sectionScale(double a3, double eps2, double tau) {
-  const double c = 1 - std::pow((a3 - tau) / a3, 2 / eps2);
-  return std::pow(c, eps2 / 2);
-}
-
-/// The half-width in y of |x/a|^n + |y/b|^n ≤ 1 at x (0 outside).
-double halfWidth(double a, double b, double n, double x) {
-  const double r = std::abs(x / a);
-  return r >= 1 ? 0 : b * std::pow(1 - std::pow(r, n), 1 / n);
 }
 
 // --- A superellipsoid pressed into a halfspace along its axis ------------------------------
