@@ -196,7 +196,8 @@ std::optional<std::vector<ContactManifold<S>>> meshManifolds(const Pair<S>& pair
     // angle of its own; each group is one region, at its first facet's plane.
     const S min_cos = std::cos(options.merge_angle);
     std::vector<std::vector<std::size_t>> groups;
-    for (const auto& [distance, i] : held) {
+    for (const std::pair<S, std::size_t>& entry : held) {
+      const std::size_t i = entry.second;
       auto joins = std::find_if(groups.begin(), groups.end(), [&](const auto& group) {
         return facets[group.front()].normal.dot(facets[i].normal) >= min_cos;
       });

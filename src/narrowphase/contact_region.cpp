@@ -392,13 +392,14 @@ ContactManifold<S> regionOfPieces(const RegionBody<S>& a,
     places.push_back({deepest, Vector2<S>::Zero()});
   } else if (!places.empty()) {
     // The shape's deepest point is off the pieces, so the region's deepest place is on its rim
-    // (the depth is concave on the plane): searched for along the two edges at the deepest
-    // vertex (golden sections), and a candidate after the vertices.
+    // (the depth is concave on the plane, greatest at the origin, the point under the shape's
+    // deepest point): at a vertex, or inside an edge whose line has the origin on its far side
+    // (at the deepest place a line supports the region and the superlevel set of the depth
+    // beyond it: the edge's own line, if the place is inside an edge). Each such edge is
+    // searched by golden sections; the deepest place found is a candidate after the vertices.
     const auto deeper = [](const Place<S>& x, const Place<S>& y) {
       return x.point.depth < y.point.depth;
     };
-    const std::size_t k =
-        std::size_t(std::max_element(places.begin(), places.end(), deeper) - places.begin());
     std::vector<OutlinePoint<S>> rim;
     for (const Place<S>& p : places) rim.push_back({p.y, p.point.on_shape, false});
     const Vector2<S> centroid = centroidOf(rim);
@@ -408,10 +409,10 @@ ContactManifold<S> regionOfPieces(const RegionBody<S>& a,
       }
       return std::nullopt;
     };
-    Place<S> best = places[k];
-    for (const std::size_t j : {(k + 1) % places.size(), (k + places.size() - 1) % places.size()}) {
-      if (j == k) continue;
-      const Vector2<S> y0 = places[k].y, y1 = places[j].y;
+    Place<S> best = *std::max_element(places.begin(), places.end(), deeper);
+    for (std::size_t k = 0; k < places.size() && places.size() > 1; ++k) {
+      const Vector2<S> y0 = places[k].y, y1 = places[(k + 1) % places.size()].y;
+      if (!(cross2(Vector2<S>(y1 - y0), Vector2<S>(-y0)) < S(0))) continue;  // origin inside
       const S golden = S(0.5) * (std::sqrt(S(5)) - S(1));
       S lo = S(0), hi = S(1);
       for (int it = 0; it < 48 && (hi - lo) * (y1 - y0).norm() > merge; ++it) {
