@@ -158,7 +158,8 @@ region; against a Mesh, one per group of triangles facing within merge_angle (ra
 other. Each region: normal (from shape 1 to shape 2), distance, patch_tolerance, polygon and
 points (ManifoldPlaces: at most max_points, the deepest first, spanning the region). The outline
 starts from outline_samples directions and leaves out about outline_area_tolerance of the area
-(>= 1: not refined, the cheapest, for the points alone). docs/usage.md -> "Contact manifolds".)doc");
+(>= 1: not refined, the cheapest, for the points alone).
+docs/usage.md -> "Contact manifolds".)doc");
 }
 
 }  // namespace python

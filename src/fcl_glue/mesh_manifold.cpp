@@ -84,28 +84,45 @@ Vector3<S> barycentric(const Facet<S>& f, const Vector3<S>& x) {
   return l;
 }
 
+/// The facets' edges, (smaller vertex, larger vertex, facet), sorted: each edge's facets.
+using EdgeOfFacet = std::array<int, 3>;
+
+template <typename S>
+std::vector<EdgeOfFacet> edgesOf(const std::vector<Facet<S>>& facets) {
+  std::vector<EdgeOfFacet> edges;
+  edges.reserve(3 * facets.size());
+  for (std::size_t i = 0; i < facets.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = facets[i].corner[k], b = facets[i].corner[(k + 1) % 3];
+      edges.push_back({std::min(a, b), std::max(a, b), int(i)});
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  return edges;
+}
+
 /// Whether the facet's face holds the shape's contact at its normal, the shape overlapping its
 /// plane by `overlap` with its deepest point there at barycentric coordinates `at` (`centre`:
-/// the shape's, world). Over the
-/// facet it does. Beyond an edge, each neighbour across it (a facet near the shape that shares
-/// the edge) offers its own normal as a way out: where moving the shape along it clears the
-/// facet by less than `overlap` less the tolerance, the facet's normal overstates the contact
-/// (the shape rests across a ridge, on the neighbour's side, and meets this facet only
-/// sideways), and it does not hold. A flat or concave continuation never offers a shorter way
-/// out, nor does the mesh's boundary (no neighbour).
+/// the shape's, world). Over the facet it does. Beyond an edge, each neighbour across it (a
+/// facet near the shape that shares the edge, found in `edges`) offers its own normal as a way out:
+/// where moving the shape along it clears the facet by less than `overlap` less the tolerance, the
+/// facet's normal overstates the contact (the shape rests across a ridge, on the neighbour's side,
+/// and meets this facet only sideways), and it does not hold. A flat or concave continuation never
+/// offers a shorter way out, nor does the mesh's boundary (no neighbour).
 template <typename S>
-bool faceHoldsContact(const std::vector<Facet<S>>& facets, std::size_t i, const Vector3<S>& at,
-                      S overlap, const RegionBody<S>& shape, const Vector3<S>& centre, S tolerance,
-                      S slack) {
+bool faceHoldsContact(const std::vector<Facet<S>>& facets, const std::vector<EdgeOfFacet>& edges,
+                      std::size_t i, const Vector3<S>& at, S overlap, const RegionBody<S>& shape,
+                      const Vector3<S>& centre, S tolerance, S slack) {
   const Facet<S>& f = facets[i];
   for (int k = 0; k < 3; ++k) {
     if (at[k] >= -slack) continue;  // not beyond the edge opposite corner k
     const int a = f.corner[(k + 1) % 3], b = f.corner[(k + 2) % 3];
-    for (std::size_t j = 0; j < facets.size(); ++j) {
+    const EdgeOfFacet first{std::min(a, b), std::max(a, b), -1};
+    for (auto e = std::lower_bound(edges.begin(), edges.end(), first);
+         e != edges.end() && (*e)[0] == first[0] && (*e)[1] == first[1]; ++e) {
+      const std::size_t j = std::size_t((*e)[2]);
+      if (j == i) continue;
       const Facet<S>& g = facets[j];
-      int shared = 0;
-      for (int m = 0; m < 3; ++m) shared += (g.corner[m] == a || g.corner[m] == b) ? 1 : 0;
-      if (j == i || shared != 2) continue;
       // Measured from the shape's centre c, the clearance along u differs from `overlap` (the
       // clearance along f's normal) by at most |u − f.normal| × (the farthest corner's and the
       // shape's reach from c): a neighbour that faces the same way to within that cannot
@@ -177,6 +194,7 @@ std::optional<std::vector<ContactManifold<S>>> meshManifolds(const Pair<S>& pair
     // Each facet's face as the other body: the shape pressed against its plane along its
     // normal, as against a halfspace; the facets the face holds the contact of, deepest first.
     std::vector<std::pair<S, std::size_t>> held;  // (the shape's overlap with the plane, facet)
+    const std::vector<EdgeOfFacet> edges = edgesOf(facets);
     // Facets of one flat piece share their normal to the bit, and so their support point.
     Vector3<S> last_normal = Vector3<S>::Zero(), on_shape = Vector3<S>::Zero();
     for (std::size_t i = 0; i < facets.size(); ++i) {
@@ -186,7 +204,7 @@ std::optional<std::vector<ContactManifold<S>>> meshManifolds(const Pair<S>& pair
       const S overlap = (f.p[0] - on_shape).dot(f.normal);
       if (!(-overlap < tolerance)) continue;
       const Vector3<S> at = barycentric(f, Vector3<S>(on_shape + overlap * f.normal));
-      if (faceHoldsContact(facets, i, at, overlap, *shape_body, centre, tolerance, slack)) {
+      if (faceHoldsContact(facets, edges, i, at, overlap, *shape_body, centre, tolerance, slack)) {
         held.emplace_back(-overlap, i);
       }
     }

@@ -279,11 +279,12 @@ std::vector<OutlinePoint<S>> clipConvex(std::vector<OutlinePoint<S>> subject,
 /// The region of `a` against the bodies `pieces` at the hit (contactRegion, facetsRegion): a's
 /// cap outlined once, clipped by each piece's cap, the clipped vertices measured along n against
 /// that piece; of several pieces the region is the convex hull of their places. The hit's place
-/// is a candidate of the reduction where `hit_is_a_place`.
+/// is a candidate of the reduction where `hit_is_a_place`. For a mesh's `facets` a flat piece's
+/// cap that holds all its corners is outlined by them (a pair's is searched, as ever).
 template <typename S>
 ContactManifold<S> regionOfPieces(const RegionBody<S>& a,
                                   const std::vector<const RegionBody<S>*>& pieces,
-                                  const PairHit<S>& hit, bool hit_is_a_place,
+                                  const PairHit<S>& hit, bool hit_is_a_place, bool facets,
                                   const Matrix3<S>& R_WS, S tolerance, S size,
                                   const ManifoldOptions<S>& options, RegionWarmStart<S>* warm) {
   ContactManifold<S> out;
@@ -347,16 +348,22 @@ ContactManifold<S> regionOfPieces(const RegionBody<S>& a,
     Vector2<S> centroid;
   };
   std::vector<Vertex> vertices;
+  std::vector<Vector3<S>> corners;
   for (const RegionBody<S>* b : pieces) {
     std::vector<OutlinePoint<S>> region = a_cap;
     if (!b->unbounded()) {
       const Vector3<S> m = -n;
-      region = clipConvex(
-          region,
-          convexOutline(
-              capOutline(*b, plane, m, S(hit.on_other.dot(m) - thickness), hit.on_other, options,
-                         merge, warm != nullptr && pieces.size() == 1 ? &warm->b : nullptr),
-              merge));
+      const S base = hit.on_other.dot(m) - thickness;
+      std::vector<OutlinePoint<S>> b_cap;
+      if (facets && b->corners(corners) &&
+          std::all_of(corners.begin(), corners.end(),
+                      [&](const Vector3<S>& p) { return p.dot(m) >= base; })) {
+        for (const Vector3<S>& p : corners) b_cap.push_back({plane.coordinates(p), p, false});
+      } else {
+        b_cap = capOutline(*b, plane, m, base, hit.on_other, options, merge,
+                           warm != nullptr && pieces.size() == 1 ? &warm->b : nullptr);
+      }
+      region = clipConvex(region, convexOutline(std::move(b_cap), merge));
     }
     const Vector2<S> centroid = centroidOf(region);
     for (const OutlinePoint<S>& o : region) vertices.push_back({o, b, centroid});
@@ -442,7 +449,7 @@ template <typename S>
 ContactManifold<S> contactRegion(const RegionBody<S>& a, const RegionBody<S>& b,
                                  const PairHit<S>& hit, const Matrix3<S>& R_WS, S tolerance, S size,
                                  const ManifoldOptions<S>& options, RegionWarmStart<S>* warm) {
-  return regionOfPieces(a, {&b}, hit, true, R_WS, tolerance, size, options, warm);
+  return regionOfPieces(a, {&b}, hit, true, false, R_WS, tolerance, size, options, warm);
 }
 
 template <typename S>
@@ -450,7 +457,7 @@ ContactManifold<S> facetsRegion(const RegionBody<S>& a,
                                 const std::vector<const RegionBody<S>*>& facets,
                                 const PairHit<S>& hit, bool hit_on_facets, const Matrix3<S>& R_WS,
                                 S tolerance, S size, const ManifoldOptions<S>& options) {
-  return regionOfPieces(a, facets, hit, hit_on_facets, R_WS, tolerance, size, options,
+  return regionOfPieces(a, facets, hit, hit_on_facets, true, R_WS, tolerance, size, options,
                         static_cast<RegionWarmStart<S>*>(nullptr));
 }
 

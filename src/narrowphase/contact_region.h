@@ -43,6 +43,9 @@ class RegionBody {
   /// A halfspace (a plane acts as the one the shape is pushed out of): its cap is the whole
   /// contact plane.
   virtual bool unbounded() const { return false; }
+  /// A flat polygon's corners (a triangle's three) into `out`, or false for other bodies: where
+  /// every corner is in a cap, the cap is the polygon itself (a mesh's facets are outlined so).
+  virtual bool corners(std::vector<Vector3<S>>& /*out*/) const { return false; }
 };
 
 /// Each cap's first outline points (world), one per sample direction: read as the starts of

@@ -201,6 +201,10 @@ class TriangleBody final : public RegionBody<S> {
     }
     return s;
   }
+  bool corners(std::vector<Vector3<S>>& out) const override {
+    out.assign({v_[0], v_[1], v_[2]});
+    return true;
+  }
 
  private:
   Vector3<S> v_[3];
