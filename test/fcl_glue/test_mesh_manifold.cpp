@@ -316,6 +316,11 @@ TEST(MeshRegionsPose, SameRegionsForThePairMovedAndTurned) {
   for (const auto& mesh : {std::shared_ptr<fcl::CollisionGeometry<double>>(curved), flat}) {
     for (const auto& [e1, e2] : {std::pair{0.3, 0.3}, std::pair{1.0, 0.8}}) {
       const Superellipsoid<double> shape(0.3, 0.25, 0.2, e1, e2);
+      // A rounded shape's places turn with the pair to 1e-9. On a box-like shape's flattish
+      // side the extreme point along a direction slides along the side with the rounding
+      // (docs/math.md → "Contact regions", accuracy): its places agree to 1e-6 × size, as in
+      // test_contact_manifold.cpp's pose test, and the region as a set (its area) to 1e-9.
+      const double point_bound = e1 < 0.5 ? 1e-6 * shape.size() : 1e-9;
       for (int trial = 0; trial < 4; ++trial) {
         // The shape's lowest point 0.02 below the mesh's surface (the body's top, or the
         // grid's plane z = 0.5); the facets, chords of the body, lie within 1e-3 of it.
@@ -346,7 +351,7 @@ TEST(MeshRegionsPose, SameRegionsForThePairMovedAndTurned) {
                       1e-9 * polygonArea(m[r].polygon, m[r].normal) + 1e-15);
           ASSERT_EQ(m[r].points.size(), mt[r].points.size());
           for (std::size_t i = 0; i < m[r].points.size(); ++i) {
-            EXPECT_LE((T * m[r].points[i].position - mt[r].points[i].position).norm(), 1e-9);
+            EXPECT_LE((T * m[r].points[i].position - mt[r].points[i].position).norm(), point_bound);
             EXPECT_NEAR(m[r].points[i].depth, mt[r].points[i].depth, 1e-12);
           }
         }
