@@ -87,26 +87,33 @@ ContactManifold<S> pairManifold(const Pair<S>& pair, const PairKind<S>& kind, co
 
 namespace {
 
+/// The pair of a public call, its poses and options checked (`where` names the call).
 template <typename S>
-ContactManifold<S> manifold(const Superellipsoid<S>& shape, const fcl::Transform3<S>& X_WS,
-                            const fcl::CollisionGeometry<S>& other, const fcl::Transform3<S>& X_WO,
-                            const ManifoldOptions<S>& options, ManifoldWarmStart<S>* warm) {
-  constexpr const char* kWhere = "contactManifold";
-  detail::checkPose(kWhere, "X_WS", X_WS);
-  detail::checkPose(kWhere, "X_WO", X_WO);
-  detail::checkOptions(kWhere, options);
-  const detail::Pair<S> pair = detail::makePair<S>(&shape, X_WS, &other, X_WO);
+detail::Pair<S> checkedPair(const char* where, const Superellipsoid<S>& shape,
+                            const fcl::Transform3<S>& X_WS, const fcl::CollisionGeometry<S>& other,
+                            const fcl::Transform3<S>& X_WO, const ManifoldOptions<S>& options) {
+  detail::checkPose(where, "X_WS", X_WS);
+  detail::checkPose(where, "X_WO", X_WO);
+  detail::checkOptions(where, options);
+  return detail::makePair<S>(&shape, X_WS, &other, X_WO);
+}
+
+/// The region of the shape and another shape (its row's hit and body); a geometry without a
+/// region is refused, naming `where`.
+template <typename S>
+ContactManifold<S> shapeManifold(const char* where, const detail::Pair<S>& pair,
+                                 const ManifoldOptions<S>& options, ManifoldWarmStart<S>* warm) {
   const detail::PairKind<S>* kind = detail::findPairKind<S>(pair.other_type);
   std::optional<detail::PairHit<S>> hit;
-  if (kind != nullptr && kind->region != nullptr) hit = kind->answer(pair, kWhere);
+  if (kind != nullptr && kind->region != nullptr) hit = kind->answer(pair, where);
   if (!hit) {
     if (kind != nullptr && kind->form == detail::PairForm::kMesh) {
-      detail::throwInvalidArgument(kWhere,
+      detail::throwInvalidArgument(where,
                                    "a BVH model may touch the shape in several regions: ask "
                                    "contactManifolds for them (its node type)",
-                                   detail::nodeTypeName(other.getNodeType()));
+                                   detail::nodeTypeName(pair.other_type));
     }
-    detail::throwUnsupportedPartner(kWhere, other);
+    detail::throwUnsupportedPartner(where, *pair.other);
   }
   return detail::pairManifold(pair, *kind, *hit, options, warm);
 }
@@ -118,7 +125,9 @@ ContactManifold<S> contactManifold(const Superellipsoid<S>& shape, const fcl::Tr
                                    const fcl::CollisionGeometry<S>& other,
                                    const fcl::Transform3<S>& X_WO,
                                    const ManifoldOptions<S>& options) {
-  return manifold(shape, X_WS, other, X_WO, options, static_cast<ManifoldWarmStart<S>*>(nullptr));
+  constexpr const char* kWhere = "contactManifold";
+  return shapeManifold(kWhere, checkedPair(kWhere, shape, X_WS, other, X_WO, options), options,
+                       static_cast<ManifoldWarmStart<S>*>(nullptr));
 }
 
 template <typename S>
@@ -126,7 +135,9 @@ ContactManifold<S> contactManifold(const Superellipsoid<S>& shape, const fcl::Tr
                                    const fcl::CollisionGeometry<S>& other,
                                    const fcl::Transform3<S>& X_WO,
                                    const ManifoldOptions<S>& options, ManifoldWarmStart<S>& warm) {
-  return manifold(shape, X_WS, other, X_WO, options, &warm);
+  constexpr const char* kWhere = "contactManifold";
+  return shapeManifold(kWhere, checkedPair(kWhere, shape, X_WS, other, X_WO, options), options,
+                       &warm);
 }
 
 template <typename S>
@@ -136,19 +147,13 @@ std::vector<ContactManifold<S>> contactManifolds(const Superellipsoid<S>& shape,
                                                  const fcl::Transform3<S>& X_WO,
                                                  const ManifoldOptions<S>& options) {
   constexpr const char* kWhere = "contactManifolds";
-  detail::checkPose(kWhere, "X_WS", X_WS);
-  detail::checkPose(kWhere, "X_WO", X_WO);
-  detail::checkOptions(kWhere, options);
-  const detail::Pair<S> pair = detail::makePair<S>(&shape, X_WS, &other, X_WO);
+  const detail::Pair<S> pair = checkedPair(kWhere, shape, X_WS, other, X_WO, options);
   if (std::optional<std::vector<ContactManifold<S>>> regions =
           detail::meshManifolds(pair, options, detail::patchTolerance(options, shape), kWhere)) {
     return std::move(*regions);
   }
-  const detail::PairKind<S>* kind = detail::findPairKind<S>(pair.other_type);
-  std::optional<detail::PairHit<S>> hit;
-  if (kind != nullptr && kind->region != nullptr) hit = kind->answer(pair, kWhere);
-  if (!hit) detail::throwUnsupportedPartner(kWhere, other);
-  ContactManifold<S> region = detail::pairManifold(pair, *kind, *hit, options);
+  ContactManifold<S> region =
+      shapeManifold(kWhere, pair, options, static_cast<ManifoldWarmStart<S>*>(nullptr));
   if (region.points.empty()) return {};
   return {std::move(region)};
 }

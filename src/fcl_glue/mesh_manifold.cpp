@@ -114,6 +114,8 @@ bool faceHoldsContact(const std::vector<Facet<S>>& facets, const std::vector<Edg
                       std::size_t i, const Vector3<S>& at, S overlap, const RegionBody<S>& shape,
                       const Vector3<S>& centre, S tolerance, S slack) {
   const Facet<S>& f = facets[i];
+  S reach = shape.size();  // of the facet's corners and the shape, from the shape's centre
+  for (const Vector3<S>& p : f.p) reach = std::max(reach, (p - centre).norm());
   for (int k = 0; k < 3; ++k) {
     if (at[k] >= -slack) continue;  // not beyond the edge opposite corner k
     const int a = f.corner[(k + 1) % 3], b = f.corner[(k + 2) % 3];
@@ -128,8 +130,6 @@ bool faceHoldsContact(const std::vector<Facet<S>>& facets, const std::vector<Edg
       // shape's reach from c): a neighbour that faces the same way to within that cannot
       // refuse, and costs no support point.
       const Vector3<S>& u = g.normal;
-      S reach = shape.size();
-      for (const Vector3<S>& p : f.p) reach = std::max(reach, (p - centre).norm());
       if ((u - f.normal).norm() * S(2) * reach < tolerance) continue;
       const S highest = std::max({f.p[0].dot(u), f.p[1].dot(u), f.p[2].dot(u)});
       const S clearance = highest - shape.support(Vector3<S>(-u)).dot(u);
