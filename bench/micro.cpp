@@ -285,12 +285,14 @@ void runManifold(benchmark::State& state, ManifoldPartner partner, ManifoldCall 
 }
 
 /// A pair's signed distance alone (the front end, signed, with the witnesses) against the same
-/// with its gradient (pairDistanceDerivatives), over 64 poses of a superellipsoid (ε = (0.6,
+/// with its gradient (pairDistanceDerivatives), and with the Jacobians of its witnesses and
+/// normal too (DerivativeOrder::kJacobians), over 64 poses of a superellipsoid (ε = (0.6,
 /// 1.2), a rounded box-like body) around a partner, half of them overlapping (a quarter of the
 /// size deep at most), half apart (up to half the size).
 enum class PairPartner { kSuperellipsoid, kEllipsoid, kBox, kCapsule, kCylinder };
+enum class PairCall { kDistance, kGradient, kJacobians };
 
-void runPairGradient(benchmark::State& state, PairPartner partner, bool gradient) {
+void runPairGradient(benchmark::State& state, PairPartner partner, PairCall call) {
   const auto body = std::make_shared<Superellipsoid<double>>(0.5, 0.4, 0.3, 0.6, 1.2);
   std::shared_ptr<fcl::CollisionGeometry<double>> other;
   switch (partner) {
@@ -333,8 +335,11 @@ void runPairGradient(benchmark::State& state, PairPartner partner, bool gradient
   fcl::DistanceRequestd request(true, true);
   std::size_t i = 0;
   for (auto _ : state) {
-    if (gradient) {
+    if (call == PairCall::kGradient) {
       benchmark::DoNotOptimize(pairDistanceDerivatives(*body, poses[i], *other, X_WO));
+    } else if (call == PairCall::kJacobians) {
+      benchmark::DoNotOptimize(
+          pairDistanceDerivatives(*body, poses[i], *other, X_WO, DerivativeOrder::kJacobians));
     } else {
       a.setTransform(poses[i]);
       fcl::DistanceResultd result;
@@ -406,12 +411,13 @@ void registerAll() {
         std::pair{"ellipsoid", PairPartner::kEllipsoid}, std::pair{"box", PairPartner::kBox},
         std::pair{"capsule", PairPartner::kCapsule},
         std::pair{"cylinder", PairPartner::kCylinder}}) {
-    for (const bool gradient : {false, true}) {
-      benchmark::RegisterBenchmark(
-          (std::string(gradient ? "PairGradient/" : "PairDistance/") + name).c_str(),
-          [partner = partner, gradient](benchmark::State& state) {
-            runPairGradient(state, partner, gradient);
-          });
+    for (const auto& [label, call] : {std::pair{"PairDistance/", PairCall::kDistance},
+                                      std::pair{"PairGradient/", PairCall::kGradient},
+                                      std::pair{"PairJacobians/", PairCall::kJacobians}}) {
+      benchmark::RegisterBenchmark((std::string(label) + name).c_str(),
+                                   [partner = partner, call = call](benchmark::State& state) {
+                                     runPairGradient(state, partner, call);
+                                   });
     }
   }
   for (const bool fresh : {true, false}) {

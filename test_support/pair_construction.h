@@ -308,13 +308,14 @@ inline std::function<LD(const V3&)> supportFunction(const fcl::CollisionGeometry
 }
 
 /// Moves the unit direction v downhill on f by a pattern search on the sphere: `polls` directions
-/// around v at an angle step from `first_step` rad, halved down to `floor`; f_v is f(v), kept
-/// current.
+/// around v at an angle step from `first_step` rad, halved down to `floor`, at most `max_moves`
+/// moves at each step; f_v is f(v), kept current.
 template <typename F>
-void patternSearch(const F& f, V3& v, LD& f_v, int polls, LD floor, LD first_step = 0.05) {
+void patternSearch(const F& f, V3& v, LD& f_v, int polls, LD floor, LD first_step = 0.05,
+                   int max_moves = 64) {
   for (LD step = first_step; step > floor; step /= 2) {
     bool moved = true;
-    for (int moves = 0; moved && moves < 64; ++moves) {
+    for (int moves = 0; moved && moves < max_moves; ++moves) {
       moved = false;
       const V3 t1 = v.unitOrthogonal(), t2 = v.cross(t1);
       for (int j = 0; j < polls && !moved; ++j) {
@@ -366,12 +367,16 @@ inline LD referenceDepth(const std::function<LD(const V3&)>& h_a,
 /// directions, the step from `first_step` halved to 1e-15 rad), for configurations that differ
 /// from the one v was found for by a small move (finite differences). Beside a box-like
 /// shape's face centre F is nearly kinked (its support function's Hessian grows without bound
-/// there), and 16 directions stalled a few 1e-6 of the value short.
+/// there), and 16 directions stalled a few 1e-6 of the value short. `max_moves` at each step:
+/// a long narrow valley of F (an overlap of elongated shapes) takes many; `direction`, if given,
+/// receives the minimiser.
 inline LD referenceDepthNear(const std::function<LD(const V3&)>& h_a,
-                             const std::function<LD(const V3&)>& h_b, V3 v, LD first_step) {
+                             const std::function<LD(const V3&)>& h_b, V3 v, LD first_step,
+                             int max_moves = 64, V3* direction = nullptr) {
   auto F = [&](const V3& w) { return h_a(w) + h_b(-w); };
   LD f = F(v);
-  patternSearch(F, v, f, 64, LD(1e-15), first_step);
+  patternSearch(F, v, f, 64, LD(1e-15), first_step, max_moves);
+  if (direction != nullptr) *direction = v;
   return f;
 }
 

@@ -100,12 +100,15 @@ ContactManifold<S> contactManifold(const Superellipsoid<S>& shape, const fcl::Tr
 /// Every contact region of the superellipsoid `shape` at X_WS and `other` at X_WO, deepest
 /// first: none where they are apart by more than the patch tolerance.
 /// - A triangle mesh (fcl::BVHModel of any BV type) is a surface: each triangle within the
-///   patch tolerance is a pair of its own (the shape and that triangle as an fcl::TriangleP)
-///   with its region, and a triangle's region joins the first deeper one whose normal is within
-///   `options.merge_angle` of its own. A merged region keeps its deepest triangle's normal and
-///   distance; its polygon is the convex hull of its triangles' polygons on that triangle's
-///   contact plane, and its points are reduced from them as one region's are. A point cloud is
-///   refused (it has no surface).
+///   patch tolerance meets the shape along its own face normal (on the shape's side), as the
+///   halfspace bounded by its plane would, clipped to the triangle; a triangle the shape
+///   overlaps only across a ridge (its deepest part over a neighbour whose normal would clear
+///   it) is left out. A triangle joins the first deeper one whose normal is within
+///   `options.merge_angle` of its own. A region keeps its deepest triangle's normal and
+///   distance; its polygon is the convex hull of the shape's cap clipped by each of its
+///   triangles, on that triangle's contact plane, and its points are reduced from it as one
+///   region's are (docs/math.md → "A mesh's regions"). A point cloud is refused (it has no
+///   surface).
 /// - Every other geometry contactManifold answers: its region, if any.
 template <typename S>
 std::vector<ContactManifold<S>> contactManifolds(const Superellipsoid<S>& shape,

@@ -29,8 +29,17 @@
 /// on both sides. A separated pair's witnesses are unique (the superellipsoid is strictly
 /// convex), so its distance is differentiable.
 ///
-/// Not yet: the Jacobians of the witness points and of the normal; meshes and point clouds
-/// (their vertices are point queries: pointDistanceDerivatives, batchDistanceDerivatives).
+/// With DerivativeOrder::kJacobians, also the Jacobians of both witness points and of the
+/// normal with respect to both twists (the implicit function theorem on the pair's optimality
+/// conditions, N_O − N_S = d·n with each witness its geometry's support point). They are those
+/// of the other geometry's feature that holds its witness: a point of a smooth surface or a
+/// vertex, an edge (n stays ⊥ it), a face (n turns with it); at the border between two
+/// features, the one the witness is found on within a tolerance. Where the witnesses do not
+/// move smoothly (an overlap whose depth is not a strict local minimum over directions),
+/// `differentiable` is false and the Jacobians are finite, of a regularised system.
+///
+/// Not handled: meshes and point clouds (their vertices are point queries:
+/// pointDistanceDerivatives, batchDistanceDerivatives).
 
 #include <fcl/geometry/collision_geometry.h>
 
@@ -50,24 +59,33 @@ struct PairDistanceDerivatives {
   Vector5<S> d_other_shape;  ///< the same for the other, if it is a Superellipsoid (else zero)
   bool other_is_superellipsoid = false;
   bool differentiable = true;  ///< false where the derivative does not exist (file comment)
+  bool has_jacobians = false;  ///< the Jacobians below were computed (else zero)
+  Eigen::Matrix<S, 3, 6> on_shape_d_pose;        ///< ∂N_S/∂ξ_S
+  Eigen::Matrix<S, 3, 6> on_shape_d_other_pose;  ///< ∂N_S/∂ξ_O
+  Eigen::Matrix<S, 3, 6> on_other_d_pose;        ///< ∂N_O/∂ξ_S
+  Eigen::Matrix<S, 3, 6> on_other_d_other_pose;  ///< ∂N_O/∂ξ_O
+  Eigen::Matrix<S, 3, 6> normal_d_pose;          ///< ∂n/∂ξ_S
+  Eigen::Matrix<S, 3, 6> normal_d_other_pose;    ///< ∂n/∂ξ_O
 };
 
 /// The signed distance of the pair (shape at X_WS, other at X_WO) and its gradient, in the
-/// world frame. The other geometry is a Superellipsoid or an fcl::Sphere, Ellipsoid, Box,
-/// Convex, TriangleP, Capsule, Cylinder, Cone, Halfspace or Plane.
+/// world frame; with `order` kJacobians also the Jacobians of the witnesses and of the normal.
+/// The other geometry is a Superellipsoid or an fcl::Sphere, Ellipsoid, Box, Convex,
+/// TriangleP, Capsule, Cylinder, Cone, Halfspace or Plane.
 /// @throws std::invalid_argument for a pose that is not finite, another geometry (naming its
 ///         node type), or the other geometry's bad parameters (as the front end refuses them).
 template <typename S>
 FSE_EXPORT PairDistanceDerivatives<S> pairDistanceDerivatives(
     const Superellipsoid<S>& shape, const detail::NonDeduced<fcl::Transform3<S>>& X_WS,
-    const fcl::CollisionGeometry<S>& other, const detail::NonDeduced<fcl::Transform3<S>>& X_WO);
+    const fcl::CollisionGeometry<S>& other, const detail::NonDeduced<fcl::Transform3<S>>& X_WO,
+    DerivativeOrder order = DerivativeOrder::kGradient);
 
 extern template FSE_EXPORT PairDistanceDerivatives<float> pairDistanceDerivatives(
     const Superellipsoid<float>&, const fcl::Transform3<float>&,
-    const fcl::CollisionGeometry<float>&, const fcl::Transform3<float>&);
+    const fcl::CollisionGeometry<float>&, const fcl::Transform3<float>&, DerivativeOrder);
 extern template FSE_EXPORT PairDistanceDerivatives<double> pairDistanceDerivatives(
     const Superellipsoid<double>&, const fcl::Transform3<double>&,
-    const fcl::CollisionGeometry<double>&, const fcl::Transform3<double>&);
+    const fcl::CollisionGeometry<double>&, const fcl::Transform3<double>&, DerivativeOrder);
 
 }  // namespace fcl_superellipsoid
 

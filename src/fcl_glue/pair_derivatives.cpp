@@ -1,6 +1,7 @@
 // The public pair gradient (pair_derivatives.h): the pair's row of pair_kinds.h answers the hit
-// and gives the other geometry's support (its region body's, or a plane's); the gradient and the
-// tie test are narrowphase/pair_gradient.h's.
+// and gives the other geometry's support (its region body's, or a plane's) and its feature at
+// the witness; the gradient and the tie test are narrowphase/pair_gradient.h's, the Jacobians
+// narrowphase/pair_jacobians.h's.
 
 #include "fcl_superellipsoid/pair_derivatives.h"
 
@@ -11,6 +12,8 @@
 #include "common/coordinate_range.h"
 #include "fcl_glue/pair_kinds.h"
 #include "narrowphase/pair_gradient.h"
+#include "narrowphase/pair_jacobians.h"
+#include "narrowphase/support_map.h"
 
 namespace fcl_superellipsoid {
 namespace {
@@ -40,8 +43,13 @@ detail::SupportValue<S> flatSupportOf(const Flat& flat, const fcl::Transform3<S>
 template <typename S>
 PairDistanceDerivatives<S> pairDistanceDerivatives(
     const Superellipsoid<S>& shape, const detail::NonDeduced<fcl::Transform3<S>>& X_WS,
-    const fcl::CollisionGeometry<S>& other, const detail::NonDeduced<fcl::Transform3<S>>& X_WO) {
+    const fcl::CollisionGeometry<S>& other, const detail::NonDeduced<fcl::Transform3<S>>& X_WO,
+    DerivativeOrder order) {
   constexpr const char* kWhere = "pairDistanceDerivatives";
+  if (order != DerivativeOrder::kGradient && order != DerivativeOrder::kJacobians) {
+    detail::throwInvalidArgument(kWhere, "order must be a DerivativeOrder",
+                                 static_cast<int>(order));
+  }
   detail::checkPose(kWhere, "X_WS", X_WS);
   detail::checkPose(kWhere, "X_WO", X_WO);
   const detail::Pair<S> pair = detail::makePair<S>(&shape, X_WS, &other, X_WO);
@@ -53,6 +61,24 @@ PairDistanceDerivatives<S> pairDistanceDerivatives(
   PairDistanceDerivatives<S> out;
   const Superellipsoid<S>* other_shape = detail::asSuperellipsoid(&other, pair.other_type);
   detail::pairGradient(pair, *hit, other_shape, out);
+  if (order == DerivativeOrder::kJacobians) {
+    const Eigen::Matrix<S, 3, 3> H_S =
+        detail::SupportMap<S>(shape, X_WS).evaluate(hit->normal).hessian;
+    const detail::PairJacobians<S> J = detail::pairJacobians(*hit, H_S, kind->feature(pair, *hit));
+    out.has_jacobians = true;
+    out.on_shape_d_pose = J.on_shape.template leftCols<6>();
+    out.on_shape_d_other_pose = J.on_shape.template rightCols<6>();
+    out.on_other_d_pose = J.on_other.template leftCols<6>();
+    out.on_other_d_other_pose = J.on_other.template rightCols<6>();
+    out.normal_d_pose = J.normal.template leftCols<6>();
+    out.normal_d_other_pose = J.normal.template rightCols<6>();
+    out.differentiable = J.regular;
+  } else {
+    for (auto* m : {&out.on_shape_d_pose, &out.on_shape_d_other_pose, &out.on_other_d_pose,
+                    &out.on_other_d_other_pose, &out.normal_d_pose, &out.normal_d_other_pose}) {
+      m->setZero();
+    }
+  }
 
   // The tie test, for an overlap (a separated pair's witnesses are unique): the other
   // geometry's support, its region body's where bounded.
@@ -79,14 +105,15 @@ PairDistanceDerivatives<S> pairDistanceDerivatives(
     }
     other_support = [&body](const Vector3<S>& v) { return body->support(v).dot(v); };
   }
-  out.differentiable = !detail::hasSeveralSeparatingMoves(pair, *hit, other_support, tie, scale);
+  out.differentiable = out.differentiable &&
+                       !detail::hasSeveralSeparatingMoves(pair, *hit, other_support, tie, scale);
   return out;
 }
 
 #define FSE_INSTANTIATE_PAIR_DERIVATIVES(S)                                                  \
   template PairDistanceDerivatives<S> pairDistanceDerivatives(                               \
       const Superellipsoid<S>&, const fcl::Transform3<S>&, const fcl::CollisionGeometry<S>&, \
-      const fcl::Transform3<S>&);
+      const fcl::Transform3<S>&, DerivativeOrder);
 FSE_INSTANTIATE_PAIR_DERIVATIVES(float)
 FSE_INSTANTIATE_PAIR_DERIVATIVES(double)
 

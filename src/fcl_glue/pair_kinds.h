@@ -3,8 +3,9 @@
 
 // Internal: every kind of geometry the superellipsoid is paired with, one row each: the other
 // geometry's node type, FCL's class of it, the check of its parameters, the narrowphase
-// function that answers the pair (src/narrowphase/) and the other geometry's body for the
-// contact region (narrowphase/region_bodies.h). The dispatcher (pairs.cpp) and FCL's
+// function that answers the pair (src/narrowphase/), the other geometry's body for the
+// contact region (narrowphase/region_bodies.h) and its shape around its witness point for the
+// pair's Jacobians (narrowphase/witness_feature.h). The dispatcher (pairs.cpp) and FCL's
 // tables (fcl_tables.h, and through them the front end, the broadphase callbacks and the
 // interposed plain calls) read this table and nothing else, so adding a pair kind is one row
 // here and one file in src/narrowphase/ (docs/design.md → "Adding a pair").
@@ -36,6 +37,7 @@
 #include "narrowphase/round_pair.h"
 #include "narrowphase/smooth_pair.h"
 #include "narrowphase/sphere_pair.h"
+#include "narrowphase/witness_feature.h"
 
 namespace fcl_superellipsoid {
 namespace detail {
@@ -54,13 +56,19 @@ using ShapeAnswer = std::optional<PairHit<S>> (*)(const Pair<S>& pair, const cha
 template <typename S>
 using RegionMaker = std::unique_ptr<RegionBody<S>> (*)(const Pair<S>& pair, const PairHit<S>& hit);
 
+/// The other geometry's shape around its witness point (narrowphase/witness_feature.h), given
+/// the pair's hit.
+template <typename S>
+using FeatureMaker = WitnessFeature<S> (*)(const Pair<S>& pair, const PairHit<S>& hit);
+
 /// One pair kind.
 template <typename S>
 struct PairKind {
   fcl::NODE_TYPE node_type;
   PairForm form;
-  ShapeAnswer<S> answer;  // kShape only
-  RegionMaker<S> region;  // nullptr: no contact region yet (one contact per pair)
+  ShapeAnswer<S> answer;    // kShape only
+  RegionMaker<S> region;    // nullptr: no contact region yet (one contact per pair)
+  FeatureMaker<S> feature;  // kShape only
 };
 
 // --- The checks of the other geometry's parameters ----------------------------------------
@@ -161,6 +169,18 @@ std::unique_ptr<RegionBody<S>> flatRegion(const Pair<S>&, const PairHit<S>& hit)
   return flatRegionBody(hit);
 }
 
+/// The other geometry, of FCL's class G, around its witness point (its answer matched G).
+template <typename S, typename G,
+          WitnessFeature<S> (*Feature)(const G&, const fcl::Transform3<S>&, const PairHit<S>&)>
+WitnessFeature<S> shapeFeature(const Pair<S>& pair, const PairHit<S>& hit) {
+  return Feature(*geometryAs<G>(pair.other), *pair.X_WO, hit);
+}
+/// A halfspace or plane: a face.
+template <typename S>
+WitnessFeature<S> flatFeature(const Pair<S>&, const PairHit<S>&) {
+  return faceFeature<S>();
+}
+
 // --- The table ------------------------------------------------------------------------------
 
 template <typename S>
@@ -168,46 +188,50 @@ inline constexpr PairKind<S> kPairKinds[] = {
     // Newton on the sphere of directions (smooth_pair.h).
     {fcl::BV_UNKNOWN, PairForm::kShape,
      &shapeAnswer<S, Superellipsoid<S>, &checkNothing<S>, &superellipsoidHit<S>>,
-     &shapeRegion<S, Superellipsoid<S>>},
+     &shapeRegion<S, Superellipsoid<S>>,
+     &shapeFeature<S, Superellipsoid<S>, &smoothFeature<S, Superellipsoid<S>>>},
     {fcl::GEOM_ELLIPSOID, PairForm::kShape,
      &shapeAnswer<S, fcl::Ellipsoid<S>, &checkEllipsoid<S>, &ellipsoidHit<S>>,
-     &shapeRegion<S, fcl::Ellipsoid<S>>},
+     &shapeRegion<S, fcl::Ellipsoid<S>>,
+     &shapeFeature<S, fcl::Ellipsoid<S>, &smoothFeature<S, fcl::Ellipsoid<S>>>},
     // The point solver (sphere_pair.h); one support point (halfspace_pair.h).
     {fcl::GEOM_SPHERE, PairForm::kShape,
      &shapeAnswer<S, fcl::Sphere<S>, &checkSphere<S>, &sphereHit<S>>,
-     &shapeRegion<S, fcl::Sphere<S>>},
+     &shapeRegion<S, fcl::Sphere<S>>,
+     &shapeFeature<S, fcl::Sphere<S>, &smoothFeature<S, fcl::Sphere<S>>>},
     {fcl::GEOM_HALFSPACE, PairForm::kShape,
      &shapeAnswer<S, fcl::Halfspace<S>, &checkPlane<S, fcl::Halfspace<S>>, &halfspaceHit<S>>,
-     &flatRegion<S>},
+     &flatRegion<S>, &flatFeature<S>},
     {fcl::GEOM_PLANE, PairForm::kShape,
-     &shapeAnswer<S, fcl::Plane<S>, &checkPlane<S, fcl::Plane<S>>, &planeHit<S>>, &flatRegion<S>},
+     &shapeAnswer<S, fcl::Plane<S>, &checkPlane<S, fcl::Plane<S>>, &planeHit<S>>, &flatRegion<S>,
+     &flatFeature<S>},
     // Features (capsule_pair.h, polytope_pair.h, round_pair.h).
     {fcl::GEOM_CAPSULE, PairForm::kShape,
      &shapeAnswer<S, fcl::Capsule<S>, &checkRound<S, fcl::Capsule<S>>, &capsuleHit<S>>,
-     &shapeRegion<S, fcl::Capsule<S>>},
+     &shapeRegion<S, fcl::Capsule<S>>, &shapeFeature<S, fcl::Capsule<S>, &capsuleFeature<S>>},
     {fcl::GEOM_BOX, PairForm::kShape, &shapeAnswer<S, fcl::Box<S>, &checkBox<S>, &boxHit<S>>,
-     &shapeRegion<S, fcl::Box<S>>},
+     &shapeRegion<S, fcl::Box<S>>, &shapeFeature<S, fcl::Box<S>, &boxFeature<S>>},
     {fcl::GEOM_CONVEX, PairForm::kShape,
      &shapeAnswer<S, fcl::Convex<S>, &checkConvex<S>, &convexHit<S>>,
-     &shapeRegion<S, fcl::Convex<S>>},
+     &shapeRegion<S, fcl::Convex<S>>, &shapeFeature<S, fcl::Convex<S>, &convexFeature<S>>},
     {fcl::GEOM_TRIANGLE, PairForm::kShape,
      &shapeAnswer<S, fcl::TriangleP<S>, &checkTriangle<S>, &triangleHit<S>>,
-     &shapeRegion<S, fcl::TriangleP<S>>},
+     &shapeRegion<S, fcl::TriangleP<S>>, &shapeFeature<S, fcl::TriangleP<S>, &triangleFeature<S>>},
     {fcl::GEOM_CYLINDER, PairForm::kShape,
      &shapeAnswer<S, fcl::Cylinder<S>, &checkRound<S, fcl::Cylinder<S>>, &cylinderHit<S>>,
-     &shapeRegion<S, fcl::Cylinder<S>>},
+     &shapeRegion<S, fcl::Cylinder<S>>, &shapeFeature<S, fcl::Cylinder<S>, &cylinderFeature<S>>},
     {fcl::GEOM_CONE, PairForm::kShape,
      &shapeAnswer<S, fcl::Cone<S>, &checkRound<S, fcl::Cone<S>>, &coneHit<S>>,
-     &shapeRegion<S, fcl::Cone<S>>},
+     &shapeRegion<S, fcl::Cone<S>>, &shapeFeature<S, fcl::Cone<S>, &coneFeature<S>>},
     // FCL's BVH models of the eight BV types: their vertices (mesh_pair.h).
-    {fcl::BV_AABB, PairForm::kMesh, nullptr, nullptr},
-    {fcl::BV_OBB, PairForm::kMesh, nullptr, nullptr},
-    {fcl::BV_RSS, PairForm::kMesh, nullptr, nullptr},
-    {fcl::BV_kIOS, PairForm::kMesh, nullptr, nullptr},
-    {fcl::BV_OBBRSS, PairForm::kMesh, nullptr, nullptr},
-    {fcl::BV_KDOP16, PairForm::kMesh, nullptr, nullptr},
-    {fcl::BV_KDOP18, PairForm::kMesh, nullptr, nullptr},
-    {fcl::BV_KDOP24, PairForm::kMesh, nullptr, nullptr},
+    {fcl::BV_AABB, PairForm::kMesh, nullptr, nullptr, nullptr},
+    {fcl::BV_OBB, PairForm::kMesh, nullptr, nullptr, nullptr},
+    {fcl::BV_RSS, PairForm::kMesh, nullptr, nullptr, nullptr},
+    {fcl::BV_kIOS, PairForm::kMesh, nullptr, nullptr, nullptr},
+    {fcl::BV_OBBRSS, PairForm::kMesh, nullptr, nullptr, nullptr},
+    {fcl::BV_KDOP16, PairForm::kMesh, nullptr, nullptr, nullptr},
+    {fcl::BV_KDOP18, PairForm::kMesh, nullptr, nullptr, nullptr},
+    {fcl::BV_KDOP24, PairForm::kMesh, nullptr, nullptr, nullptr},
 };
 
 /// The row of node type t, or nullptr where the superellipsoid has no pair with it.

@@ -272,8 +272,19 @@ TYPED_TEST(BadInputTest, ContactManifolds) {
 }
 
 TYPED_TEST(BadInputTest, PairDerivatives) {
-  expectPairRefusals<TypeParam>("pairDistanceDerivatives",
-                                [](const auto&... args) { pairDistanceDerivatives(args...); });
+  using S = TypeParam;
+  expectPairRefusals<S>("pairDistanceDerivatives",
+                        [](const auto&... args) { pairDistanceDerivatives(args...); });
+  const Superellipsoid<S> shape(1, 1, 1, S(0.5), S(0.5));
+  const fcl::Sphere<S> sphere(1);
+  fcl::Transform3<S> apart = fcl::Transform3<S>::Identity();
+  apart.translation() = Vector3<S>(3, 0, 0);
+  expectRefused(
+      [&] {
+        pairDistanceDerivatives(shape, fcl::Transform3<S>::Identity(), sphere, apart,
+                                static_cast<DerivativeOrder>(7));
+      },
+      "pairDistanceDerivatives", "order must be a DerivativeOrder", "7");
 }
 
 TYPED_TEST(BadInputTest, PointDerivatives) {

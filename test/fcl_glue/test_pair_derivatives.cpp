@@ -20,9 +20,11 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <iostream>
 #include <memory>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "fcl_superellipsoid/pair_derivatives.h"
@@ -84,7 +86,8 @@ Eigen::VectorXd termsAlong(const PairDistanceDerivatives<double>& g, const Move&
 /// with the ball's radius added to the superellipsoid's support). A halfspace and a plane in
 /// closed form: the shape's extreme points along the normal.
 LD truthNear(const Superellipsoidd& shape, const fcl::Transform3d& X_WS,
-             const fcl::CollisionGeometryd& other, const fcl::Transform3d& X_WO, const V3& v) {
+             const fcl::CollisionGeometryd& other, const fcl::Transform3d& X_WO, const V3& v,
+             int max_moves = 64) {
   const std::function<LD(const V3&)> h_s = supportFunction(shape, X_WS);
   if (auto* x = dynamic_cast<const fcl::Halfspaced*>(&other)) {
     const V3 u = X_WO.linear().cast<LD>() * x->n.cast<LD>();
@@ -108,7 +111,7 @@ LD truthNear(const Superellipsoidd& shape, const fcl::Transform3d& X_WS,
   }
   const std::vector<V3> vertices = polytopeVertices(other, X_WO);
   if (!vertices.empty()) return -polytopeDepth(h_s, vertices);
-  return -referenceDepthNear(h_s, supportFunction(other, X_WO), v, LD(1e-3));
+  return -referenceDepthNear(h_s, supportFunction(other, X_WO), v, LD(1e-3), max_moves);
 }
 
 struct Partner {
@@ -160,6 +163,27 @@ Partner randomPartner(int kind, std::mt19937& rng, LD size, RandomShape& storage
   }
 }
 
+/// A random pair with a partner of kind `kind` (randomPartner's), of size 10^u (u uniform in
+/// [−2, 2]): the partner's centre along a random direction from the shape's, at a distance that
+/// makes the pair separated or overlapping. `partner.shape` points into `storage`.
+struct RandomPair {
+  LD size;
+  RandomShape s, storage;
+  Partner partner;
+  fcl::Transform3d X_WS, X_WO;
+};
+void drawPair(int kind, std::mt19937& rng, RandomPair& out) {
+  std::uniform_real_distribution<double> gap(-0.65, 0.3), unit(-1, 1), log_size(-2, 2);
+  out.size = std::pow(LD(10), LD(log_size(rng)));
+  out.s = randomShape(rng, out.size, 0.2, 1.8);
+  out.partner = randomPartner(kind, rng, out.size, out.storage);
+  out.X_WS = pose<double>(randomRotation(rng), out.size * V3(unit(rng), unit(rng), unit(rng)));
+  const V3 direction = V3(unit(rng), unit(rng), unit(rng)).normalized();
+  const LD reach = (1.0 + gap(rng)) * (out.s.radii.maxCoeff() + out.size * 0.6);
+  out.X_WO =
+      pose<double>(randomRotation(rng), out.X_WS.translation().cast<LD>() + reach * direction);
+}
+
 /// The float twin of one of randomPartner's geometries (nullptr for a convex).
 std::shared_ptr<fcl::CollisionGeometry<float>> asFloat(const fcl::CollisionGeometryd& g) {
   if (auto* x = dynamic_cast<const Superellipsoidd*>(&g)) {
@@ -208,7 +232,6 @@ std::shared_ptr<fcl::CollisionGeometry<float>> asFloat(const fcl::CollisionGeome
 // cancel), and the flag is clear.
 TEST(PairDerivatives, GradientsMatchFiniteDifferencesOfTheTruth) {
   std::mt19937 rng(53);
-  std::uniform_real_distribution<double> gap(-0.65, 0.3), unit(-1, 1), log_size(-2, 2);
   std::normal_distribution<double> normal;
   double worst = 0;
   int separated = 0, overlapping = 0;
@@ -222,19 +245,13 @@ TEST(PairDerivatives, GradientsMatchFiniteDifferencesOfTheTruth) {
   }
   for (std::size_t trial = 0; trial < kinds.size(); ++trial) {
     const int kind = kinds[trial];
-    const LD size = std::pow(LD(10), LD(log_size(rng)));
-    const RandomShape s = randomShape(rng, size, 0.2, 1.8);
-    RandomShape storage;
-    const Partner partner = randomPartner(kind, rng, size, storage);
+    RandomPair pair;
+    drawPair(kind, rng, pair);
+    const LD size = pair.size;
+    const RandomShape& s = pair.s;
+    const Partner& partner = pair.partner;
     const Superellipsoidd shape = superellipsoid(s);
-    const fcl::Transform3d X_WS =
-        pose<double>(randomRotation(rng), size * V3(unit(rng), unit(rng), unit(rng)));
-    // The partner's centre along a random direction, at a distance that makes the pair
-    // separated or overlapping.
-    const V3 direction = V3(unit(rng), unit(rng), unit(rng)).normalized();
-    const LD reach = (1.0 + gap(rng)) * (s.radii.maxCoeff() + size * 0.6);
-    const fcl::Transform3d X_WO =
-        pose<double>(randomRotation(rng), X_WS.translation().cast<LD>() + reach * direction);
+    const fcl::Transform3d &X_WS = pair.X_WS, &X_WO = pair.X_WO;
     SCOPED_TRACE(testing::Message()
                  << "trial " << trial << ", " << partner.name << ", size " << double(size));
 
@@ -297,6 +314,160 @@ TEST(PairDerivatives, GradientsMatchFiniteDifferencesOfTheTruth) {
               separated, overlapping);
 }
 
+/// The truth's normal and witnesses of (shape at X_WS, other at X_WO), from its signed distance
+/// alone: n = ∂d/∂v_O and ∂d/∂ω_S = n × N_S (central differences, steps h of length and
+/// `angle` of rotation), so
+/// N_S = (∂d/∂ω_S) × n + h_S(n)·n with the shape's support function h_S, and N_O = N_S + d·n.
+/// The smooth partners' searches may take many moves along a narrow valley of F (kPatient).
+constexpr int kPatient = 100000;
+struct TruthWitnesses {
+  V3 normal, on_shape, on_other;
+};
+TruthWitnesses truthWitnesses(const Superellipsoidd& shape, const fcl::Transform3d& X_WS,
+                              const fcl::CollisionGeometryd& other, const fcl::Transform3d& X_WO,
+                              const V3& v, double h, double angle) {
+  V3 n, rotation;
+  for (int k = 0; k < 3; ++k) {
+    Vector6<double> xi = Vector6<double>::Zero();
+    xi[k + 3] = 1;  // the other geometry moved along axis k
+    n[k] = (truthNear(shape, X_WS, other, movedPose(X_WO, xi, h), v, kPatient) -
+            truthNear(shape, X_WS, other, movedPose(X_WO, xi, -h), v, kPatient)) /
+           (2 * h);
+    xi.setZero();
+    xi[k] = 1;  // the superellipsoid turned about axis k
+    rotation[k] = (truthNear(shape, movedPose(X_WS, xi, angle), other, X_WO, v, kPatient) -
+                   truthNear(shape, movedPose(X_WS, xi, -angle), other, X_WO, v, kPatient)) /
+                  (2 * angle);
+  }
+  n.normalize();
+  const V3 on_shape = rotation.cross(n) + supportFunction(shape, X_WS)(n) * n;
+  const LD d = truthNear(shape, X_WS, other, X_WO, v, kPatient);
+  return {n, on_shape, V3(on_shape + d * n)};
+}
+
+/// Whether a superellipsoid's witness along the unit direction n (world) is where its support
+/// map is too bent for a difference of step `step` rad to measure its Jacobian: beside a
+/// coordinate plane of directions, for an exponent below 1 (a box-like face or edge: the support
+/// point moves as a power below 1 of the direction's component, its Jacobian unbounded at 0).
+/// A central difference of the power p is off by about (step/m)²·(1 − p)(2 − p)/6 at the
+/// component m, so it takes m ≥ 500 steps for 1e-6.
+bool tooBentForDifferences(const RandomShape& s, const fcl::Transform3d& X, const V3& n,
+                           double step) {
+  if (std::min(s.e1, s.e2) >= 1) return false;
+  const V3 m = X.linear().cast<LD>().transpose() * n;
+  return m.cwiseAbs().minCoeff() < 500 * step;
+}
+
+// The Jacobians of the witnesses and of the normal (DerivativeOrder::kJacobians) against
+// central differences of the truth's witnesses and normal (truthWitnesses: differences of its
+// signed distance, nested) along a random move of both poses, on random pairs of every kind,
+// separated and overlapping, sizes 0.01–100: |J·δ − difference| within 1e-6 of Σ‖J_k‖·|δ_k|
+// for each of the three. Three pairs of each kind, one of a box and of a tetrahedron (whose
+// truths cost the most): each move costs 26 evaluations of the truth. Pairs where a
+// superellipsoid's support map is too bent at the difference's step are left to the rigid
+// motion's check (tooBentForDifferences).
+TEST(PairDerivatives, JacobiansMatchFiniteDifferencesOfTheTruth) {
+  std::mt19937 rng(56);
+  std::normal_distribution<double> normal;
+  double worst = 0;
+  int separated = 0, overlapping = 0, bent = 0;
+  std::array<int, 11> checked{};  // per kind
+  for (int trial = 0; trial < 33; ++trial) {
+    const int kind = trial % 11;
+    if (trial >= 11 && (kind == 3 || kind == 7)) continue;  // a box's and a tetrahedron's truth
+    RandomPair pair;
+    drawPair(kind, rng, pair);
+    const LD size = pair.size;
+    const RandomShape& s = pair.s;
+    const Partner& partner = pair.partner;
+    const Superellipsoidd shape = superellipsoid(s);
+    const fcl::Transform3d &X_WS = pair.X_WS, &X_WO = pair.X_WO;
+    SCOPED_TRACE(testing::Message()
+                 << "trial " << trial << ", " << partner.name << ", size " << double(size));
+
+    const PairDistanceDerivatives<double> got =
+        pairDistanceDerivatives(shape, X_WS, *partner.geometry, X_WO, DerivativeOrder::kJacobians);
+    ASSERT_TRUE(got.has_jacobians);
+    EXPECT_TRUE(got.differentiable);
+    V3 v(0, 0, 1);
+    if (kind <= 2) {
+      const auto h_s = supportFunction(shape, X_WS), h_o = supportFunction(*partner.geometry, X_WO);
+      referenceDepth(h_s, h_o, 20000, &v);
+      referenceDepthNear(h_s, h_o, v, LD(1e-3), kPatient, &v);
+    }
+    const double h = 1e-5;  // of the size, and in radians
+    // The same twist of both poses moves the witnesses and the normal rigidly with it.
+    {
+      Vector6<double> xi;
+      for (int k = 0; k < 6; ++k) xi[k] = (k < 3 ? 1.0 : double(size)) * normal(rng);
+      const Eigen::Vector3d w = xi.head<3>(), u = xi.tail<3>();
+      const double lever = 3 * double(size);
+      EXPECT_LE(((got.normal_d_pose + got.normal_d_other_pose) * xi - w.cross(got.normal)).norm(),
+                1e-8 * (got.normal_d_pose.norm() + got.normal_d_other_pose.norm()) * xi.norm());
+      for (const auto& [J_s, J_o, p] :
+           {std::tie(got.on_shape_d_pose, got.on_shape_d_other_pose, got.on_shape),
+            std::tie(got.on_other_d_pose, got.on_other_d_other_pose, got.on_other)}) {
+        EXPECT_LE(((J_s + J_o) * xi - (w.cross(p) + u)).norm(),
+                  1e-8 * (J_s.norm() + J_o.norm()) * xi.norm() + 1e-12 * lever * xi.norm());
+      }
+    }
+
+    Vector6<double> xi_s, xi_o;
+    for (int k = 0; k < 3; ++k) {
+      xi_s[k] = normal(rng);
+      xi_o[k] = normal(rng);
+      xi_s[k + 3] = double(size) * normal(rng);
+      xi_o[k + 3] = double(size) * normal(rng);
+    }
+    const double t = 3e-5;
+    const TruthWitnesses plus = truthWitnesses(shape, movedPose(X_WS, xi_s, t), *partner.geometry,
+                                               movedPose(X_WO, xi_o, t), v, h * double(size), h);
+    const TruthWitnesses minus = truthWitnesses(shape, movedPose(X_WS, xi_s, -t), *partner.geometry,
+                                                movedPose(X_WO, xi_o, -t), v, h * double(size), h);
+    // Where a superellipsoid's support map is too bent at the difference's step, the truth
+    // cannot measure the Jacobian (the rigid motion above still checks it).
+    const V3 n_truth = ((plus.normal + minus.normal) / 2).normalized();
+    const double step = t * (xi_s.head<3>().norm() + xi_o.head<3>().norm() +
+                             (xi_s.tail<3>().norm() + xi_o.tail<3>().norm()) / double(size));
+    if (tooBentForDifferences(s, X_WS, n_truth, step) ||
+        (partner.shape != nullptr &&
+         tooBentForDifferences(*partner.shape, X_WO, V3(-n_truth), step))) {
+      ++bent;
+      continue;
+    }
+    (got.distance < 0 ? overlapping : separated)++;
+    ++checked[std::size_t(kind)];
+    // The truth where the library answered: the mean of the two, to second order in t.
+    EXPECT_LE(((plus.normal + minus.normal) / 2 - got.normal.cast<LD>()).norm(), LD(1e-7));
+    EXPECT_LE(((plus.on_shape + minus.on_shape) / 2 - got.on_shape.cast<LD>()).norm(),
+              LD(1e-6) * size);
+    const auto check = [&](const char* what, const Eigen::Matrix<double, 3, 6>& J_s,
+                           const Eigen::Matrix<double, 3, 6>& J_o, const V3& p, const V3& m) {
+      const Eigen::Vector3d predicted = J_s * xi_s + J_o * xi_o;
+      const Eigen::Vector3d difference = ((p - m) / (2 * t)).cast<double>();
+      double scale = 1e-12 * double(size);
+      for (int k = 0; k < 6; ++k) {
+        scale += J_s.col(k).norm() * std::abs(xi_s[k]) + J_o.col(k).norm() * std::abs(xi_o[k]);
+      }
+      const double error = (predicted - difference).norm() / scale;
+      EXPECT_LE(error, 1e-6) << what << ": predicted " << predicted.transpose() << ", difference "
+                             << difference.transpose();
+      worst = std::max(worst, error);
+    };
+    check("normal", got.normal_d_pose, got.normal_d_other_pose, plus.normal, minus.normal);
+    check("on_shape", got.on_shape_d_pose, got.on_shape_d_other_pose, plus.on_shape,
+          minus.on_shape);
+    check("on_other", got.on_other_d_pose, got.on_other_d_other_pose, plus.on_other,
+          minus.on_other);
+  }
+  EXPECT_GT(separated, 5);
+  EXPECT_GT(overlapping, 5);
+  RecordProperty("worst_relative_error", testing::PrintToString(worst));
+  std::printf(
+      "pair Jacobians: worst relative error %g (%d separated, %d overlapping, %d too bent)\n",
+      worst, separated, overlapping, bent);
+}
+
 // Two shortest separating moves: coincident centres of the superellipsoid and a centrally
 // symmetric partner (another superellipsoid, a sphere, a box, a capsule; rotated at random),
 // where −n separates them as well as n, and a plane through the shape's centre (straddled by
@@ -341,7 +512,7 @@ TEST(PairDerivatives, TwoShortestSeparatingMovesAreFlagged) {
 
 // Float against double on random pairs of every kind: the same distance, normal and gradient
 // to float's precision (1e-3 of the size or of the gradient's scale: a float pair's witnesses
-// carry that; ShapePairs.FloatAgreesWithDouble), and the same flag.
+// carry that; ShapePairs.FloatAgreesWithDouble), and the same flag; float's Jacobians finite.
 TEST(PairDerivatives, FloatAgreesWithDouble) {
   std::mt19937 rng(55);
   std::uniform_real_distribution<double> gap(-0.65, 0.3), unit(-1, 1);
@@ -364,7 +535,12 @@ TEST(PairDerivatives, FloatAgreesWithDouble) {
     ASSERT_NE(other, nullptr);
     const PairDistanceDerivatives<float> f = pairDistanceDerivatives(
         Superellipsoidf(shape.radii().cast<float>(), float(shape.eps1()), float(shape.eps2())),
-        fcl::Transform3f(X_WS.cast<float>()), *other, fcl::Transform3f(X_WO.cast<float>()));
+        fcl::Transform3f(X_WS.cast<float>()), *other, fcl::Transform3f(X_WO.cast<float>()),
+        DerivativeOrder::kJacobians);
+    EXPECT_TRUE(f.has_jacobians);
+    EXPECT_TRUE(f.normal_d_pose.allFinite() && f.normal_d_other_pose.allFinite() &&
+                f.on_shape_d_pose.allFinite() && f.on_shape_d_other_pose.allFinite() &&
+                f.on_other_d_pose.allFinite() && f.on_other_d_other_pose.allFinite());
     EXPECT_NEAR(f.distance, d.distance, 1e-3);
     EXPECT_LE((f.normal.cast<double>() - d.normal).norm(), 1e-3);
     const double scale = 1 + d.d_pose.norm() + d.d_other_pose.norm();
