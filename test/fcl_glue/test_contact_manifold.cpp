@@ -1,7 +1,8 @@
 // The contact manifold (contact_manifold.h), against constructions: a superellipsoid pressed
 // into a halfspace along its axis has the cross-section at that depth as its region (its area
 // in closed form, docs/math.md → "Contact regions"); two flat faces pressed together have the
-// overlap of their cross-sections (its area by quadrature here), a capsule or cylinder on a flat
+// overlap of their cross-sections (its area by quadrature here), a small body on a far larger
+// face its places over its own face, a capsule or cylinder on a flat
 // face its own cap (a strip, a stadium, a disc); every vertex's points on the
 // two surfaces (the gauge in long double, the plane); the answer turns with the pair; FCL's
 // collide with several contacts gives the manifold's overlapping places in its conventions.
@@ -21,6 +22,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <memory>
 #include <random>
@@ -188,6 +190,49 @@ TEST(ManifoldFaceToFace, SuperellipsoidOnABoxFace) {
       // The box's face is flat: every vertex's other point is on it.
       for (const ManifoldPoint<double>& p : m.polygon) {
         EXPECT_NEAR((X * X_AB).inverse().operator*(p.on_other).z(), -0.2, 1e-12);
+      }
+    }
+  }
+}
+
+// A small box-like body on a far larger flat face (a body on the floor): the pair's witnesses are
+// then any two points of the two faces, not one above the other. Every place, the hit's among
+// the reduced points too, must be one point of each surface along the normal, over the small
+// body's face.
+TEST(ManifoldFaceToFace, PlacesOfASmallBodyOnALargeFaceAreOverItsFace) {
+  std::mt19937 rng(523);
+  std::uniform_real_distribution<double> across(-5, 5), turn(-M_PI, M_PI);
+  const Superellipsoid<double> floor(20, 20, 0.5, 0.1, 0.1);
+  const Superellipsoid<double> small_shape(0.3, 0.3, 0.2, 0.1, 0.1);
+  const fcl::Box<double> small_box(0.6, 0.6, 0.4);
+  for (int trial = 0; trial < 12; ++trial) {
+    for (const double gap : {1e-4, -5e-3}) {
+      for (const fcl::CollisionGeometry<double>* small :
+           std::initializer_list<const fcl::CollisionGeometry<double>*>{&small_shape, &small_box}) {
+        const fcl::Transform3d X = randomPose<double>(rng, 1.0);
+        fcl::Transform3d X_FB = fcl::Transform3d::Identity();
+        X_FB.linear() = Eigen::AngleAxisd(turn(rng), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+        X_FB.translation() = Eigen::Vector3d(across(rng), across(rng), 0.5 + 0.2 + gap);
+        const fcl::Transform3d X_WB = X * X_FB;
+        SCOPED_TRACE(::testing::Message() << "trial " << trial << " gap " << gap << " partner "
+                                          << (small == &small_box ? "box" : "superellipsoid"));
+        std::vector<ContactManifold<double>> answers{contactManifold(floor, X, *small, X_WB)};
+        if (small == &small_shape) answers.push_back(contactManifold(small_shape, X_WB, floor, X));
+        for (const ContactManifold<double>& m : answers) {
+          ASSERT_FALSE(m.points.empty());
+          std::vector<ManifoldPoint<double>> places = m.polygon;
+          places.insert(places.end(), m.points.begin(), m.points.end());
+          for (std::size_t k = 0; k < places.size(); ++k) {
+            const ManifoldPoint<double>& p = places[k];
+            SCOPED_TRACE(k < m.polygon.size() ? "polygon vertex" : "reduced point");
+            const Eigen::Vector3d apart = p.on_other - p.on_shape;
+            EXPECT_LT((apart - apart.dot(m.normal) * m.normal).norm(), 1e-9 * 20);
+            EXPECT_NEAR((p.position - 0.5 * (p.on_shape + p.on_other)).norm(), 0, 1e-9 * 20);
+            const Eigen::Vector3d local = X_WB.inverse() * p.position;
+            EXPECT_LE(std::abs(local.x()), 0.3 * (1 + 1e-9)) << local.transpose();
+            EXPECT_LE(std::abs(local.y()), 0.3 * (1 + 1e-9)) << local.transpose();
+          }
+        }
       }
     }
   }
