@@ -27,6 +27,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
 
 #include "common/invalid_argument.h"
 #include "fcl_glue/pair.h"
@@ -38,6 +39,7 @@
 #include "narrowphase/smooth_pair.h"
 #include "narrowphase/sphere_pair.h"
 #include "narrowphase/witness_feature.h"
+#include "narrowphase/witnesses_on_bodies.h"
 
 namespace fcl_superellipsoid {
 namespace detail {
@@ -147,14 +149,21 @@ void checkTriangle(const char* where, const fcl::TriangleP<S>& x) {
 }
 
 /// The answer of a shape kind: the other geometry as FCL's class G, checked by Check, answered
-/// by the narrowphase function Hit.
+/// by the narrowphase function Hit, its witnesses on both bodies (witnesses_on_bodies.h; a
+/// halfspace's or plane's witness is on it by construction).
 template <typename S, typename G, void (*Check)(const char*, const G&),
           std::optional<PairHit<S>> (*Hit)(const ShapePair<S>&, const G&)>
 std::optional<PairHit<S>> shapeAnswer(const Pair<S>& pair, const char* where) {
   const G* other = geometryAs<G>(pair.other);
   if (other == nullptr) return std::nullopt;
   Check(where, *other);
-  return Hit(pair, *other);
+  const std::optional<PairHit<S>> hit = Hit(pair, *other);
+  if constexpr (std::is_same_v<G, fcl::Halfspace<S>> || std::is_same_v<G, fcl::Plane<S>>) {
+    return hit;
+  } else {
+    if (!hit) return hit;
+    return witnessesOnBodies(*pair.shape, *pair.X_WS, *regionBody(*other, *pair.X_WO), *hit);
+  }
 }
 
 /// The other geometry, of FCL's class G, as a region body.

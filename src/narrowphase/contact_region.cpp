@@ -409,8 +409,10 @@ ContactManifold<S> regionOfPieces(const RegionBody<S>& a,
         const Vector3<S> faces[] = {pieces.front()->support(Vector3<S>(-n)), a.support(n),
                                     hit.on_other, hit.on_shape};
         for (const Vector3<S>& on_a_face : faces) {
+          // A point farther from the shape's witness than the shape is wide is no place of it
+          // (and a tiny shape's line extent there can overflow).
           const Vector2<S> y = plane.coordinates(on_a_face);
-          if (!plane.at(y).allFinite()) continue;
+          if (!((plane.at(y) - hit.on_shape).norm() <= S(4) * size)) continue;
           const std::optional<Place<S>> p = measured(y, y, *pieces.front(), nullptr);
           if (pairDepth(p)) {
             deepest = p->point;

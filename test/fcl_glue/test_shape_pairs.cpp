@@ -737,6 +737,68 @@ TEST(ShapePairs, DegenerateConfigurations) {
   }
 }
 
+// A small body lying face down on a far larger flat face (a box-like body on the floor): the
+// pair's witnesses may be any points of the two faces, but each must lie on its own body and the
+// two must be the distance apart. Both argument orders, the front end and FCL's table.
+TEST(ShapePairs, FaceOnFaceWitnessesLieOnTheirBodies) {
+  std::mt19937 rng(529);
+  std::uniform_real_distribution<double> across(-5, 5), turn(-M_PI, M_PI);
+  const auto floor = std::make_shared<Superellipsoidd>(20.0, 20.0, 0.5, 0.1, 0.1);
+  const auto small_shape = std::make_shared<Superellipsoidd>(0.3, 0.3, 0.2, 0.1, 0.1);
+  const auto small_box = std::make_shared<fcl::Boxd>(0.6, 0.6, 0.4);
+  const double tolerance = 1e-9 * 20;
+  // How far x (world) lies off body g's surface at X.
+  const auto offSurface = [](const fcl::CollisionGeometryd& g, const fcl::Transform3d& X,
+                             const Vector3<double>& x) {
+    const Vector3<double> local = X.inverse() * x;
+    if (const auto* box = dynamic_cast<const fcl::Boxd*>(&g)) {
+      const Vector3<double> outside = local.cwiseAbs() - 0.5 * box->side;
+      return std::abs(outside.maxCoeff());
+    }
+    const auto& shape = dynamic_cast<const Superellipsoidd&>(g);
+    return std::abs(shape.gauge(local) - 1) * shape.size();
+  };
+  fcl::detail::GJKSolver_libccd<double> solver;
+  for (int trial = 0; trial < 12; ++trial) {
+    for (const double gap : {1e-4, 0.05, -5e-3}) {
+      for (const std::shared_ptr<fcl::CollisionGeometryd>& small :
+           {std::shared_ptr<fcl::CollisionGeometryd>(small_shape),
+            std::shared_ptr<fcl::CollisionGeometryd>(small_box)}) {
+        const fcl::Transform3d X = pose<double>(randomRotation(rng), V3(0.3, -0.2, 0.1));
+        fcl::Transform3d X_FB = fcl::Transform3d::Identity();
+        X_FB.linear() = Eigen::AngleAxisd(turn(rng), Vector3<double>::UnitZ()).toRotationMatrix();
+        X_FB.translation() = Vector3<double>(across(rng), across(rng), 0.5 + 0.2 + gap);
+        const fcl::CollisionObjectd a(floor, X), b(small, X * X_FB);
+        for (const bool front : {true, false}) {
+          for (const bool floor_first : {true, false}) {
+            SCOPED_TRACE(::testing::Message()
+                         << "trial " << trial << " gap " << gap << " partner "
+                         << (small == small_box ? "box" : "superellipsoid") << " front " << front
+                         << " floor first " << floor_first);
+            const fcl::CollisionObjectd* o1 = floor_first ? &a : &b;
+            const fcl::CollisionObjectd* o2 = floor_first ? &b : &a;
+            fcl::DistanceRequestd request(true, true);
+            fcl::DistanceResultd result;
+            if (front) {
+              fcl_superellipsoid::distance(o1, o2, request, result);
+            } else {
+              fcl::distance(o1, o2, &solver, request, result);
+            }
+            EXPECT_NEAR(result.min_distance, gap, 1e-9);
+            const Vector3<double>& p1 = result.nearest_points[0];
+            const Vector3<double>& p2 = result.nearest_points[1];
+            EXPECT_LE(offSurface(*o1->collisionGeometry(), o1->getTransform(), p1), tolerance)
+                << p1.transpose();
+            EXPECT_LE(offSurface(*o2->collisionGeometry(), o2->getTransform(), p2), tolerance)
+                << p2.transpose();
+            EXPECT_NEAR((p1 - p2).norm(), std::abs(gap), tolerance);
+          }
+        }
+      }
+    }
+  }
+}
+
 // A tetrahedron 1e285 across around a box-like superellipsoid (the fuzzer's input,
 // docs/hardening.md, finding 14): libccd's GJK distance, which the overlap path once called,
 // aborted the process on an assertion inside libfcl. Every call answers: an overlap, finite.
