@@ -395,35 +395,8 @@ ContactManifold<S> regionOfPieces(const RegionBody<S>& a,
     deepest.on_other = hit.on_other;
     deepest.position = plane.origin;
     deepest.depth = -hit.distance;
-    Vector2<S> deepest_y = Vector2<S>::Zero();
-    // Face on face (both deepest sets flat), the pair's witnesses may be any points of the two
-    // faces, and the line along n through their middle need not cross both bodies: the hit's
-    // place is then measured above a point of either face (each body's support point along the
-    // normal, or the witnesses), the first where the depth is the pair's.
-    if (pieces.size() == 1) {
-      const S agree = std::sqrt(std::numeric_limits<S>::epsilon()) * size;
-      const auto pairDepth = [&](const std::optional<Place<S>>& p) {
-        return p && std::abs(p->point.depth - deepest.depth) <= agree;
-      };
-      if (!pairDepth(measured(deepest_y, deepest_y, *pieces.front(), nullptr))) {
-        const Vector3<S> faces[] = {pieces.front()->support(Vector3<S>(-n)), a.support(n),
-                                    hit.on_other, hit.on_shape};
-        for (const Vector3<S>& on_a_face : faces) {
-          // A point farther from the shape's witness than the shape is wide is no place of it
-          // (and a tiny shape's line extent there can overflow).
-          const Vector2<S> y = plane.coordinates(on_a_face);
-          if (!((plane.at(y) - hit.on_shape).norm() <= S(4) * size)) continue;
-          const std::optional<Place<S>> p = measured(y, y, *pieces.front(), nullptr);
-          if (pairDepth(p)) {
-            deepest = p->point;
-            deepest_y = p->y;
-            break;
-          }
-        }
-      }
-    }
     if (out.polygon.empty()) out.polygon.push_back(deepest);
-    places.push_back({deepest, deepest_y});
+    places.push_back({deepest, Vector2<S>::Zero()});
   } else if (!places.empty()) {
     // The shape's deepest point is off the pieces, so the region's deepest place is on its rim
     // (the depth is concave on the plane, greatest at the origin, the point under the shape's
