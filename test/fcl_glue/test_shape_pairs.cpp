@@ -35,6 +35,7 @@
 #include "pair_construction.h"
 #include "polytope_depth.h"
 #include "round_depth.h"
+#include "test_helpers.h"
 
 namespace fcl_superellipsoid {
 namespace {
@@ -747,7 +748,8 @@ TEST(ShapePairs, FaceOnFaceWitnessesLieOnTheirBodies) {
   const auto small_shape = std::make_shared<Superellipsoidd>(0.3, 0.3, 0.2, 0.1, 0.1);
   const auto small_box = std::make_shared<fcl::Boxd>(0.6, 0.6, 0.4);
   const double tolerance = 1e-9 * 20;
-  // How far x (world) lies off body g's surface at X.
+  // How far x (world) lies off body g's surface at X (a superellipsoid's: its gauge in long
+  // double, test_helpers.h).
   const auto offSurface = [](const fcl::CollisionGeometryd& g, const fcl::Transform3d& X,
                              const Vector3<double>& x) {
     const Vector3<double> local = X.inverse() * x;
@@ -756,7 +758,7 @@ TEST(ShapePairs, FaceOnFaceWitnessesLieOnTheirBodies) {
       return std::abs(outside.maxCoeff());
     }
     const auto& shape = dynamic_cast<const Superellipsoidd&>(g);
-    return std::abs(shape.gauge(local) - 1) * shape.size();
+    return double(std::abs(test::referenceGauge(shape, local) - 1)) * shape.size();
   };
   fcl::detail::GJKSolver_libccd<double> solver;
   for (int trial = 0; trial < 12; ++trial) {
