@@ -17,6 +17,7 @@ from ._core import (
     Convex,
     Cylinder,
     DistanceGradients,
+    DistanceJacobians,
     Ellipsoid,
     Halfspace,
     ManifoldPlaces,
@@ -24,6 +25,7 @@ from ._core import (
     Mesh,
     PairDistance,
     PairDistanceGradients,
+    PairDistanceJacobians,
     Plane,
     PointQuery,
     Shape,
@@ -34,6 +36,7 @@ from ._core import (
     contact_manifolds,
     distance,
     distance_gradients,
+    distance_jacobians,
     simd_instruction_set,
 )
 
@@ -46,6 +49,7 @@ __all__ = [
     "Convex",
     "Cylinder",
     "DistanceGradients",
+    "DistanceJacobians",
     "Ellipsoid",
     "Halfspace",
     "ManifoldPlaces",
@@ -53,6 +57,7 @@ __all__ = [
     "Mesh",
     "PairDistance",
     "PairDistanceGradients",
+    "PairDistanceJacobians",
     "Plane",
     "PointQuery",
     "Shape",
@@ -63,5 +68,6 @@ __all__ = [
     "contact_manifolds",
     "distance",
     "distance_gradients",
+    "distance_jacobians",
     "simd_instruction_set",
 ]

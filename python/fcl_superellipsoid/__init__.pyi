@@ -30,6 +30,20 @@ class DistanceGradients(NamedTuple):
     d_shape: FloatArray
     differentiable: Union[bool, npt.NDArray[np.bool_]]
 
+class DistanceJacobians(NamedTuple):
+    distance: Union[float, FloatArray]
+    nearest_point: FloatArray
+    normal: FloatArray
+    d_pose: FloatArray
+    d_shape: FloatArray
+    differentiable: Union[bool, npt.NDArray[np.bool_]]
+    nearest_point_d_point: FloatArray
+    nearest_point_d_pose: FloatArray
+    nearest_point_d_shape: FloatArray
+    normal_d_point: FloatArray
+    normal_d_pose: FloatArray
+    normal_d_shape: FloatArray
+
 class PairDistance(NamedTuple):
     distance: float
     point1: npt.NDArray[np.float64]
@@ -46,6 +60,23 @@ class PairDistanceGradients(NamedTuple):
     d_shape1: Optional[npt.NDArray[np.float64]]
     d_shape2: Optional[npt.NDArray[np.float64]]
     differentiable: bool
+
+class PairDistanceJacobians(NamedTuple):
+    distance: float
+    point1: npt.NDArray[np.float64]
+    point2: npt.NDArray[np.float64]
+    normal: npt.NDArray[np.float64]
+    d_pose1: npt.NDArray[np.float64]
+    d_pose2: npt.NDArray[np.float64]
+    d_shape1: Optional[npt.NDArray[np.float64]]
+    d_shape2: Optional[npt.NDArray[np.float64]]
+    differentiable: bool
+    point1_d_pose1: npt.NDArray[np.float64]
+    point1_d_pose2: npt.NDArray[np.float64]
+    point2_d_pose1: npt.NDArray[np.float64]
+    point2_d_pose2: npt.NDArray[np.float64]
+    normal_d_pose1: npt.NDArray[np.float64]
+    normal_d_pose2: npt.NDArray[np.float64]
 
 class Contact(NamedTuple):
     position: npt.NDArray[np.float64]
@@ -120,6 +151,14 @@ class Superellipsoid(Shape):
         threads: int = 0,
         vectorize: bool = True,
     ) -> DistanceGradients: ...
+    def distance_jacobians(
+        self,
+        points: ArrayLike,
+        pose: Pose = None,
+        *,
+        tolerance: Optional[float] = None,
+        max_iterations: Optional[int] = None,
+    ) -> DistanceJacobians: ...
     def within_margin(
         self,
         points: ArrayLike,
@@ -192,6 +231,9 @@ def distance(shape1: Shape, pose1: Pose, shape2: Shape, pose2: Pose) -> PairDist
 def distance_gradients(
     shape1: Shape, pose1: Pose, shape2: Shape, pose2: Pose
 ) -> PairDistanceGradients: ...
+def distance_jacobians(
+    shape1: Shape, pose1: Pose, shape2: Shape, pose2: Pose
+) -> PairDistanceJacobians: ...
 def collide(
     shape1: Shape, pose1: Pose, shape2: Shape, pose2: Pose, max_contacts: int = 1
 ) -> list[Contact]: ...

@@ -173,6 +173,20 @@ Eigen::VectorXd finiteVector(const py::handle& values, Eigen::Index n, const cha
   return v;
 }
 
+const PythonShape& superellipsoidOfPair(const fcl::CollisionGeometry<double>& a,
+                                        const fcl::CollisionGeometry<double>& b, bool& shape_first,
+                                        const char* call) {
+  if (const auto* s = dynamic_cast<const PythonShape*>(&a)) {
+    shape_first = true;
+    return *s;
+  }
+  if (const auto* s = dynamic_cast<const PythonShape*>(&b)) {
+    shape_first = false;
+    return *s;
+  }
+  throw py::type_error(std::string(call) + ": one of the two shapes must be a Superellipsoid");
+}
+
 py::handle resultType(py::module_& m, const char* name, std::initializer_list<const char*> fields,
                       const char* doc) {
   py::tuple names(fields.size());

@@ -3,6 +3,7 @@
 /// @file
 /// numpy arrays in and out of the library (docs/python.md → "Arrays"): the checks every call
 /// makes on its arguments, the result types, and result arrays that own the library's buffers.
+#include <fcl/geometry/collision_geometry.h>
 #include <fcl/math/geometry.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -10,6 +11,8 @@
 #include <Eigen/Core>
 #include <initializer_list>
 #include <string>
+
+#include "python_shape.h"
 
 namespace fcl_superellipsoid {
 namespace python {
@@ -55,6 +58,12 @@ fcl::Transform3<double> poseOf(const py::handle& pose, const char* name);
 
 /// A vector of `n` finite numbers (a radius list, a normal, a vertex): ValueError otherwise.
 Eigen::VectorXd finiteVector(const py::handle& values, Eigen::Index n, const char* name);
+
+/// The Superellipsoid of a pair query's two shapes: `a` if it is one (shape_first = true), else
+/// `b`. TypeError naming `call` where neither is.
+const PythonShape& superellipsoidOfPair(const fcl::CollisionGeometry<double>& a,
+                                        const fcl::CollisionGeometry<double>& b, bool& shape_first,
+                                        const char* call);
 
 /// A result type: a collections.namedtuple class `name` of `fields`, set as the module's
 /// attribute. The handle stays valid for the process (the module holds the class).

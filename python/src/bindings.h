@@ -24,6 +24,9 @@ ShapeClass bindShape(py::module_& m);
 void bindPointQueries(py::module_& m, ShapeClass& shape);
 /// pair_queries.cpp: FCL's shapes and the pair queries distance() and collide().
 void bindPairQueries(py::module_& m);
+/// derivative_queries.cpp: Superellipsoid.distance_gradients and distance_jacobians, and the
+/// pair queries distance_gradients() and distance_jacobians().
+void bindDerivativeQueries(py::module_& m, ShapeClass& shape);
 /// manifold_queries.cpp: Mesh and contact_manifolds().
 void bindManifoldQueries(py::module_& m);
 

@@ -82,12 +82,8 @@ py::list contactManifolds(const std::shared_ptr<Geometry>& a, const py::handle& 
                           std::optional<double> patch_tolerance, int max_points,
                           int outline_samples, double outline_area_tolerance, double merge_angle) {
   if (!a || !b) throw py::type_error("contact_manifolds: the shapes must not be None");
-  const auto* first = dynamic_cast<const PythonShape*>(a.get());
-  const auto* second = dynamic_cast<const PythonShape*>(b.get());
-  if (first == nullptr && second == nullptr) {
-    throw py::type_error("contact_manifolds: one of the two shapes must be a Superellipsoid");
-  }
-  const bool shape_first = first != nullptr;
+  bool shape_first = true;
+  const PythonShape& shape = superellipsoidOfPair(*a, *b, shape_first, "contact_manifolds");
   const fcl::Transform3<double> X_a = poseOf(pose_a, "pose1");
   const fcl::Transform3<double> X_b = poseOf(pose_b, "pose2");
   ManifoldOptions<double> options;
@@ -108,8 +104,8 @@ py::list contactManifolds(const std::shared_ptr<Geometry>& a, const py::handle& 
   {
     py::gil_scoped_release release;
     regions = shape_first
-                  ? fcl_superellipsoid::contactManifolds<double>(*first, X_a, *b, X_b, options)
-                  : fcl_superellipsoid::contactManifolds<double>(*second, X_b, *a, X_a, options);
+                  ? fcl_superellipsoid::contactManifolds<double>(shape, X_a, *b, X_b, options)
+                  : fcl_superellipsoid::contactManifolds<double>(shape, X_b, *a, X_a, options);
   }
   py::list out;
   for (const ContactManifold<double>& m : regions) {

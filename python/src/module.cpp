@@ -10,5 +10,6 @@ PYBIND11_MODULE(_core, m) {
   python::ShapeClass shape = python::bindShape(m);
   python::bindPointQueries(m, shape);
   python::bindPairQueries(m);
+  python::bindDerivativeQueries(m, shape);
   python::bindManifoldQueries(m);
 }

@@ -11,7 +11,6 @@
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/geometry/shape/triangle_p.h>
 #include <fcl_superellipsoid/fcl_integration.h>
-#include <fcl_superellipsoid/pair_derivatives.h>
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
@@ -29,7 +28,6 @@ namespace {
 using Geometry = fcl::CollisionGeometry<double>;
 
 py::handle pair_distance_type;
-py::handle pair_gradients_type;
 py::handle contact_type;
 
 double positive(double value, const char* name) {
@@ -103,23 +101,11 @@ Eigen::Vector3d worldNormal(const PythonShape& shape, const fcl::Transform3<doub
   return X.linear() * shape.normal(X.inverse() * p_W);
 }
 
-const PythonShape& oneSuperellipsoid(const Geometry& a, const Geometry& b, bool& first) {
-  if (const auto* s = dynamic_cast<const PythonShape*>(&a)) {
-    first = true;
-    return *s;
-  }
-  if (const auto* s = dynamic_cast<const PythonShape*>(&b)) {
-    first = false;
-    return *s;
-  }
-  throw py::type_error("distance/collide: one of the two shapes must be a Superellipsoid");
-}
-
 py::object pairDistance(const std::shared_ptr<Geometry>& a, const py::handle& pose_a,
                         const std::shared_ptr<Geometry>& b, const py::handle& pose_b) {
   if (!a || !b) throw py::type_error("distance: the shapes must not be None");
   bool first = true;
-  const PythonShape& shape = oneSuperellipsoid(*a, *b, first);
+  const PythonShape& shape = superellipsoidOfPair(*a, *b, first, "distance");
   const fcl::Transform3<double> X_a = poseOf(pose_a, "pose1");
   const fcl::Transform3<double> X_b = poseOf(pose_b, "pose2");
   fcl::DistanceRequest<double> request(true);
@@ -144,35 +130,6 @@ py::object pairDistance(const std::shared_ptr<Geometry>& a, const py::handle& po
   return pair_distance_type(d, p1, p2, normal);
 }
 
-/// The pair's signed distance and its gradient (pair_derivatives.h), in the caller's order: the
-/// library answers (superellipsoid, other); where the superellipsoid is shape 2 the normal turns
-/// and the two sides swap.
-py::object pairGradients(const std::shared_ptr<Geometry>& a, const py::handle& pose_a,
-                         const std::shared_ptr<Geometry>& b, const py::handle& pose_b) {
-  if (!a || !b) throw py::type_error("distance_gradients: the shapes must not be None");
-  bool first = true;
-  const PythonShape& shape = oneSuperellipsoid(*a, *b, first);
-  const fcl::Transform3<double> X_a = poseOf(pose_a, "pose1");
-  const fcl::Transform3<double> X_b = poseOf(pose_b, "pose2");
-  PairDistanceDerivatives<double> g;
-  {
-    py::gil_scoped_release release;
-    g = first ? pairDistanceDerivatives<double>(shape, X_a, *b, X_b)
-              : pairDistanceDerivatives<double>(shape, X_b, *a, X_a);
-  }
-  const py::object none = py::none();
-  const py::object d_shape = py::cast(Eigen::VectorXd(g.d_shape));
-  const py::object d_other_shape =
-      g.other_is_superellipsoid ? py::cast(Eigen::VectorXd(g.d_other_shape)) : none;
-  const Eigen::VectorXd d_pose = g.d_pose, d_other_pose = g.d_other_pose;
-  if (first) {
-    return pair_gradients_type(g.distance, g.on_shape, g.on_other, g.normal, d_pose, d_other_pose,
-                               d_shape, d_other_shape, g.differentiable);
-  }
-  return pair_gradients_type(g.distance, g.on_other, g.on_shape, Eigen::Vector3d(-g.normal),
-                             d_other_pose, d_pose, d_other_shape, d_shape, g.differentiable);
-}
-
 py::list pairCollide(const std::shared_ptr<Geometry>& a, const py::handle& pose_a,
                      const std::shared_ptr<Geometry>& b, const py::handle& pose_b,
                      int max_contacts) {
@@ -182,7 +139,7 @@ py::list pairCollide(const std::shared_ptr<Geometry>& a, const py::handle& pose_
                           std::to_string(max_contacts));
   }
   bool first = true;
-  oneSuperellipsoid(*a, *b, first);
+  superellipsoidOfPair(*a, *b, first, "collide");
   const fcl::Transform3<double> X_a = poseOf(pose_a, "pose1");
   const fcl::Transform3<double> X_b = poseOf(pose_b, "pose2");
   fcl::CollisionRequest<double> request(static_cast<std::size_t>(max_contacts), true);
@@ -238,15 +195,6 @@ void bindPairQueries(py::module_& m) {
       m, "PairDistance", {"distance", "point1", "point2", "normal"},
       "Signed distance (< 0: the penetration depth), the two witness points (world frame), and "
       "the unit normal from shape 1 to shape 2.");
-  pair_gradients_type = resultType(
-      m, "PairDistanceGradients",
-      {"distance", "point1", "point2", "normal", "d_pose1", "d_pose2", "d_shape1", "d_shape2",
-       "differentiable"},
-      "A pair's signed distance, witnesses and normal (as PairDistance), with its gradient: "
-      "d_pose1, d_pose2 (6,) with respect to a twist (omega, v) of each pose in the world frame; "
-      "d_shape1, d_shape2 (5,) with respect to a Superellipsoid's (a1, a2, a3, eps1, eps2), None "
-      "for another shape; differentiable, False where the pair has two shortest separating "
-      "moves.");
   contact_type = resultType(m, "Contact", {"position", "normal", "depth"},
                             "A contact: its position (world frame), the unit normal from shape 1 "
                             "to shape 2, the penetration depth (> 0).");
@@ -302,17 +250,6 @@ PairDistance(distance, point1, point2, normal). Separated: the distance and the 
 Overlapping: minus the penetration depth (the shortest translation that separates them); each
 point is its shape's support point along the normal, so moving shape 2 by point1 - point2
 leaves them touching. normal: unit, from shape 1 to shape 2. Poses: None, (4, 4) or (R, t).)doc");
-  m.def("distance_gradients", &pairGradients, py::arg("shape1"), py::arg("pose1"),
-        py::arg("shape2"), py::arg("pose2"), R"doc(
-The signed distance of two posed shapes, one of them a Superellipsoid (float64), with its
-gradient: PairDistanceGradients(distance, point1, point2, normal, d_pose1, d_pose2, d_shape1,
-d_shape2, differentiable). distance, points and normal as distance() gives them. d_pose1 and
-d_pose2 (6,): the derivatives with respect to a twist (omega, v) applied to each pose in the world
-frame (pose <- exp(twist) pose: a point p of the shape moves by omega x p + v). d_shape1 and
-d_shape2 (5,): with respect to a Superellipsoid's (a1, a2, a3, eps1, eps2), None for another
-shape. differentiable: False where an overlapping pair has two shortest separating moves
-(coincident centres, a partner centred on a symmetry plane); the gradient is then that of the
-returned normal.)doc");
   m.def("collide", &pairCollide, py::arg("shape1"), py::arg("pose1"), py::arg("shape2"),
         py::arg("pose2"), py::arg("max_contacts") = 1, R"doc(
 The contacts of two overlapping posed shapes, one of them a Superellipsoid: a list of

@@ -41,3 +41,8 @@ def random_rotation(seed):
     if np.linalg.det(q) < 0:
         q[:, 0] = -q[:, 0]
     return q
+
+
+def skew(v):
+    """The matrix [v]x of the cross product: skew(v) @ w = v x w."""
+    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])

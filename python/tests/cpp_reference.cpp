@@ -3,8 +3,12 @@
 //   {"query": "batch" | "scalar", "dtype": "float32" | "float64", "radii": [3], "exponents": [2],
 //    "pose": 4 × 4 rows, "method": "exact" | "paper" | "radial", "vectorize": bool,
 //    "points": file of N × 3 raw values, "out": file for distance N, nearest N × 3, normal N × 3}
+//   {"query": "jacobians", the same fields}: pointDistanceDerivatives with kJacobians (default
+//     options) per point, "out" holding per point distance, nearest (3), normal (3),
+//     d_pose (6), d_shape (5), then ∂N/∂Q, ∂N/∂ξ, ∂N/∂θ, ∂n/∂Q, ∂n/∂ξ, ∂n/∂θ, each row-major
 //   {"query": "pair", "radii", "exponents", "pose", "other": {"kind": ..., ...}, "other_pose"}
-//     → {"distance", "point1", "point2", "contacts": [{"position", "normal", "depth"}]}
+//     → {"distance", "point1", "point2", "contacts": [{"position", "normal", "depth"}],
+//        "jacobians": pairDistanceDerivatives' fields with kJacobians, matrices row-major}
 // Doubles are written with enough digits to round-trip, so the comparison is bitwise.
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
@@ -16,6 +20,8 @@
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl_superellipsoid/batch_distance.h>
 #include <fcl_superellipsoid/fcl_integration.h>
+#include <fcl_superellipsoid/pair_derivatives.h>
+#include <fcl_superellipsoid/point_derivatives.h>
 #include <fcl_superellipsoid/point_distance.h>
 
 #include <cstring>
@@ -63,7 +69,7 @@ void pointQueries(const json& request) {
   fse::BatchDistanceResult<S> result;
   if (request["query"] == "batch") {
     fse::batchDistance(shape, X_WS, p_WV, result, options);
-  } else {
+  } else if (request["query"] == "scalar") {
     result.distance.resize(n);
     result.nearest_point.resize(3, n);
     result.normal.resize(3, n);
@@ -79,6 +85,29 @@ void pointQueries(const json& request) {
   const auto bytes_of = [&](const S* data, Eigen::Index count) {
     out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(count * sizeof(S)));
   };
+  if (request["query"] == "jacobians") {
+    const auto row_major = [&](const auto& m) {
+      for (Eigen::Index r = 0; r < m.rows(); ++r) {
+        for (Eigen::Index c = 0; c < m.cols(); ++c) bytes_of(&m(r, c), 1);
+      }
+    };
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const fse::PointDistanceDerivatives<S> r = fse::pointDistanceDerivatives(
+          shape, X_WS, fse::Vector3<S>(p_WV.col(i)), fse::DerivativeOrder::kJacobians);
+      bytes_of(&r.value.distance, 1);
+      bytes_of(r.value.nearest_point.data(), 3);
+      bytes_of(r.value.normal.data(), 3);
+      bytes_of(r.d_pose.data(), 6);
+      bytes_of(r.d_shape.data(), 5);
+      row_major(r.nearest_point_d_query);
+      row_major(r.nearest_point_d_pose);
+      row_major(r.nearest_point_d_shape);
+      row_major(r.normal_d_query);
+      row_major(r.normal_d_pose);
+      row_major(r.normal_d_shape);
+    }
+    return;
+  }
   bytes_of(result.distance.data(), n);
   bytes_of(result.nearest_point.data(), 3 * n);
   bytes_of(result.normal.data(), 3 * n);
@@ -102,6 +131,16 @@ std::shared_ptr<fcl::CollisionGeometry<double>> otherOf(const json& o) {
 }
 
 json vector3(const Eigen::Vector3d& v) { return json::array({v(0), v(1), v(2)}); }
+
+/// A matrix's entries, row after row.
+template <typename Matrix>
+json rowMajor(const Matrix& m) {
+  json out = json::array();
+  for (Eigen::Index r = 0; r < m.rows(); ++r) {
+    for (Eigen::Index c = 0; c < m.cols(); ++c) out.push_back(m(r, c));
+  }
+  return out;
+}
 
 void pairQuery(const json& request) {
   const auto shape = std::make_shared<fse::Superellipsoid<double>>(
@@ -127,6 +166,20 @@ void pairQuery(const json& request) {
                                   {"normal", vector3(c.normal)},
                                   {"depth", c.penetration_depth}});
   }
+  const fse::PairDistanceDerivatives<double> j =
+      fse::pairDistanceDerivatives(*shape, X1, *other, X2, fse::DerivativeOrder::kJacobians);
+  answer["jacobians"] = {{"distance", j.distance},
+                         {"normal", vector3(j.normal)},
+                         {"d_pose", rowMajor(j.d_pose)},
+                         {"d_other_pose", rowMajor(j.d_other_pose)},
+                         {"d_shape", rowMajor(j.d_shape)},
+                         {"on_shape_d_pose", rowMajor(j.on_shape_d_pose)},
+                         {"on_shape_d_other_pose", rowMajor(j.on_shape_d_other_pose)},
+                         {"on_other_d_pose", rowMajor(j.on_other_d_pose)},
+                         {"on_other_d_other_pose", rowMajor(j.on_other_d_other_pose)},
+                         {"normal_d_pose", rowMajor(j.normal_d_pose)},
+                         {"normal_d_other_pose", rowMajor(j.normal_d_other_pose)},
+                         {"differentiable", j.differentiable}};
   std::cout << answer.dump() << "\n";
 }
 

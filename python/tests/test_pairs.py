@@ -5,7 +5,7 @@ import pytest
 
 import fcl_superellipsoid as fse
 
-from conftest import random_rotation, unit_directions
+from conftest import random_rotation, skew, unit_directions
 
 
 def frame_with_z(n):
@@ -199,3 +199,103 @@ def test_pair_gradients_flag_coincident_centres():
 def test_pair_gradients_refuse_two_other_shapes():
     with pytest.raises(TypeError, match="Superellipsoid"):
         fse.distance_gradients(fse.Sphere(1.0), None, fse.Box(1.0, 1.0, 1.0), None)
+
+
+def test_pair_jacobians_of_two_spheres_are_the_closed_form():
+    """The spheres above: n = (c2 - c1)/L with L = |c2 - c1|, so dn/dc2 = P/L = -dn/dc1 with
+    P = I - n n^T; a twist of pose k moves its centre by dc_k = [-[c_k]x, I] (a sphere turning
+    about its centre moves no witness); p1 = c1 + r1 n, p2 = c2 - r2 n."""
+    r1, r2 = 0.7, 0.4
+    ball = fse.Superellipsoid((r1, r1, r1), (1.0, 1.0))
+    rng = np.random.default_rng(54)
+    for i, u in enumerate(unit_directions(10, seed=34)):
+        R1, c1 = random_rotation(50 + i), rng.normal(size=3)
+        L = (r1 + r2) * (0.6 + 0.9 * i / 10)
+        c2 = c1 + L * u
+        j = fse.distance_jacobians(ball, (R1, c1), fse.Sphere(r2), (random_rotation(60 + i), c2))
+        P = np.eye(3) - np.outer(u, u)
+        moves1 = np.hstack([-skew(c1), np.eye(3)])
+        moves2 = np.hstack([-skew(c2), np.eye(3)])
+        n_d1, n_d2 = -(P / L) @ moves1, (P / L) @ moves2
+        np.testing.assert_allclose(j.normal_d_pose1, n_d1, atol=1e-8)
+        np.testing.assert_allclose(j.normal_d_pose2, n_d2, atol=1e-8)
+        np.testing.assert_allclose(j.point1_d_pose1, moves1 + r1 * n_d1, atol=1e-8)
+        np.testing.assert_allclose(j.point1_d_pose2, r1 * n_d2, atol=1e-8)
+        np.testing.assert_allclose(j.point2_d_pose1, -r2 * n_d1, atol=1e-8)
+        np.testing.assert_allclose(j.point2_d_pose2, moves2 - r2 * n_d2, atol=1e-8)
+        assert j.differentiable
+
+
+def rotation_about(axis, angle):
+    k = np.zeros(3)
+    k[axis] = 1.0
+    K = skew(k)
+    return np.eye(3) + np.sin(angle) * K + (1 - np.cos(angle)) * K @ K
+
+
+def moved(pose, component, h):
+    """pose <- exp(h e_component) pose: a turn about a world axis through the origin (0-2) or a
+    move along it (3-5)."""
+    R, t = pose
+    if component < 3:
+        turn = rotation_about(component, h)
+        return (turn @ R, turn @ t)
+    step = np.zeros(3)
+    step[component - 3] = h
+    return (R, t + step)
+
+
+@pytest.mark.parametrize("other,other_pose", [
+    (fse.Ellipsoid(0.5, 0.3, 0.4), (random_rotation(71), np.array([1.6, 0.4, -0.3]))),
+    (fse.Superellipsoid((0.6, 0.4, 0.5), (0.7, 1.2)),
+     (random_rotation(72), np.array([0.9, 0.8, 0.2]))),
+    (fse.Superellipsoid((0.6, 0.4, 0.5), (0.7, 1.2)),
+     (random_rotation(73), np.array([0.5, 0.3, 0.1]))),
+], ids=["ellipsoid apart", "superellipsoid apart", "superellipsoid overlapping"])
+def test_pair_jacobians_match_differences_of_the_witnesses_in_either_order(other, other_pose):
+    a = fse.Superellipsoid((1.0, 0.7, 0.5), (0.5, 1.5))
+    pose_a = (random_rotation(70), np.array([0.1, 0.2, 0.3]))
+    j = fse.distance_jacobians(a, pose_a, other, other_pose)
+    assert j.differentiable
+    h = 1e-6
+    for which, pose in ((1, pose_a), (2, other_pose)):
+        for c in range(6):
+            def answer(step):
+                p = moved(pose, c, step)
+                return (fse.distance(a, p, other, other_pose) if which == 1
+                        else fse.distance(a, pose_a, other, p))
+            plus, minus = answer(h), answer(-h)
+            for field, name in (("point1", "point1"), ("point2", "point2"), ("normal", "normal")):
+                column = getattr(j, f"{name}_d_pose{which}")[:, c]
+                difference = (getattr(plus, field) - getattr(minus, field)) / (2 * h)
+                np.testing.assert_allclose(column, difference, atol=2e-6,
+                                           err_msg=f"{name}_d_pose{which}[:, {c}]")
+    # In the other order, the same Jacobians with the sides swapped and the normal turned.
+    if isinstance(other, fse.Superellipsoid):
+        return
+    k = fse.distance_jacobians(other, other_pose, a, pose_a)
+    np.testing.assert_array_equal(k.point1_d_pose1, j.point2_d_pose2)
+    np.testing.assert_array_equal(k.point2_d_pose1, j.point1_d_pose2)
+    np.testing.assert_array_equal(k.point1_d_pose2, j.point2_d_pose1)
+    np.testing.assert_array_equal(k.normal_d_pose1, -j.normal_d_pose2)
+    np.testing.assert_array_equal(k.normal_d_pose2, -j.normal_d_pose1)
+
+
+def test_pair_jacobians_of_a_box_follow_the_order_of_the_shapes():
+    a = fse.Superellipsoid((1.0, 0.7, 0.5), (0.5, 1.5))
+    box = fse.Box(0.4, 0.5, 0.6)
+    pose_a = (random_rotation(74), np.array([0.1, 0.2, 0.3]))
+    pose_b = (random_rotation(75), np.array([1.4, -0.5, 0.6]))
+    j = fse.distance_jacobians(a, pose_a, box, pose_b)
+    k = fse.distance_jacobians(box, pose_b, a, pose_a)
+    g = fse.distance_gradients(a, pose_a, box, pose_b)
+    for field in ("distance", "point1", "point2", "normal", "d_pose1", "d_pose2", "d_shape1"):
+        np.testing.assert_array_equal(getattr(j, field), getattr(g, field))
+    assert j.d_shape2 is None and k.d_shape1 is None
+    np.testing.assert_array_equal(k.point1_d_pose1, j.point2_d_pose2)
+    np.testing.assert_array_equal(k.point2_d_pose2, j.point1_d_pose1)
+    np.testing.assert_array_equal(k.normal_d_pose2, -j.normal_d_pose1)
+    for m in (j.point1_d_pose1, j.point2_d_pose2, j.normal_d_pose1):
+        assert m.shape == (3, 6) and np.isfinite(m).all()
+    with pytest.raises(TypeError, match="Superellipsoid"):
+        fse.distance_jacobians(box, None, fse.Sphere(1.0), None)

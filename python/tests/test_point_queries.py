@@ -7,7 +7,7 @@ import pytest
 
 import fcl_superellipsoid as fse
 
-from conftest import outside_points, random_rotation, unit_directions
+from conftest import outside_points, random_rotation, skew, unit_directions
 
 
 def test_outside_distances_match_the_construction(shape):
@@ -326,3 +326,83 @@ def test_distance_gradients_flag_the_centre_and_refuse_other_methods():
         s.distance_gradients([1.0, 2.0, 3.0], method="radial")
     with pytest.raises(ValueError, match="1"):
         s.distance_gradients(np.array([[1.0, np.nan, 0.0]]))
+
+
+def test_distance_jacobians_of_a_posed_sphere_match_the_construction():
+    # A sphere of radius R centred at t, a point p at r = |p − t| along u: N = t + R u, n = u.
+    # ∂u/∂p = P / r with P = I − u uᵀ, so ∂N/∂p = R P / r, ∂n/∂p = P / r. The twist (ω, v)
+    # moves the centre by ω × t + v, ∂t/∂ξ = [−[t]×, I], and the sphere turning about its
+    # centre moves neither: ∂N/∂ξ = (I − R P / r) ∂t/∂ξ, ∂n/∂ξ = −(P / r) ∂t/∂ξ.
+    R, rotation, t = 1.5, random_rotation(25), np.array([0.3, -0.7, 1.1])
+    s = fse.Superellipsoid((R, R, R), (1.0, 1.0))
+    rng = np.random.default_rng(26)
+    p = t + rng.uniform(-3, 3, size=(200, 3))
+    j = s.distance_jacobians(p, (rotation, t))
+    g = s.distance_gradients(p, (rotation, t))
+    for field in ("distance", "nearest_point", "normal", "d_pose", "d_shape", "differentiable"):
+        np.testing.assert_allclose(getattr(j, field), getattr(g, field), rtol=0, atol=1e-12)
+    assert j.nearest_point_d_point.shape == (200, 3, 3)
+    assert j.nearest_point_d_pose.shape == (200, 3, 6)
+    assert j.nearest_point_d_shape.shape == (200, 3, 5)
+    moves_centre = np.hstack([-skew(t), np.eye(3)])
+    for i in range(len(p)):
+        offset = p[i] - t
+        r = np.linalg.norm(offset)
+        u = offset / r
+        P = np.eye(3) - np.outer(u, u)
+        np.testing.assert_allclose(j.nearest_point_d_point[i], R * P / r, atol=1e-9)
+        np.testing.assert_allclose(j.normal_d_point[i], P / r, atol=1e-9)
+        np.testing.assert_allclose(j.nearest_point_d_pose[i],
+                                   (np.eye(3) - R * P / r) @ moves_centre, atol=1e-9)
+        np.testing.assert_allclose(j.normal_d_pose[i], -(P / r) @ moves_centre, atol=1e-9)
+
+
+def test_distance_jacobians_shape_columns_match_differences_of_the_nearest_points():
+    # Each parameter's column against central differences of closest_points over new shapes,
+    # posed (outside points: the nearest point moves smoothly there).
+    radii, exponents = np.array([1.2, 0.8, 0.5]), np.array([0.4, 1.3])
+    pose = (random_rotation(27), np.array([0.5, 0.1, -0.3]))
+    s = fse.Superellipsoid(radii, exponents)
+    points, _, _, _ = outside_points(s, 40, seed=28)
+    points = points @ pose[0].T + pose[1]
+    j = s.distance_jacobians(points, pose)
+    assert j.differentiable.all()
+    h = 1e-6
+    for k in range(5):
+        step = np.zeros(5)
+        step[k] = h
+        plus = fse.Superellipsoid(radii + step[:3], exponents + step[3:]).closest_points(
+            points, pose)
+        minus = fse.Superellipsoid(radii - step[:3], exponents - step[3:]).closest_points(
+            points, pose)
+        np.testing.assert_allclose(j.nearest_point_d_shape[:, :, k],
+                                   (plus.nearest_point - minus.nearest_point) / (2 * h),
+                                   atol=1e-6)
+        np.testing.assert_allclose(j.normal_d_shape[:, :, k],
+                                   (plus.normal - minus.normal) / (2 * h), atol=1e-6)
+
+
+def test_distance_jacobians_of_one_point_are_its_item_and_float32_runs_in_float(shape):
+    points, _, _, _ = outside_points(shape, 10, seed=29)
+    points = np.vstack([points, 0.5 * points])  # inside too
+    j = shape.distance_jacobians(points)
+    one = shape.distance_jacobians(points[4])
+    assert isinstance(one.distance, float) and isinstance(one.differentiable, bool)
+    assert one.nearest_point_d_pose.shape == (3, 6) and one.normal_d_shape.shape == (3, 5)
+    for field in ("nearest_point_d_point", "nearest_point_d_pose", "nearest_point_d_shape",
+                  "normal_d_point", "normal_d_pose", "normal_d_shape"):
+        np.testing.assert_array_equal(getattr(one, field), getattr(j, field)[4])
+        assert np.isfinite(getattr(j, field)).all()
+    j32 = shape.distance_jacobians(points.astype(np.float32))
+    assert j32.nearest_point_d_point.dtype == np.float32 and j32.distance.dtype == np.float32
+
+
+def test_distance_jacobians_flag_the_centre_and_name_a_bad_point():
+    s = fse.Superellipsoid((1.0, 0.8, 0.6), (0.5, 0.5))
+    j = s.distance_jacobians(np.array([[0.0, 0.0, 0.0], [0.1, 0.2, 0.3]]))
+    assert list(j.differentiable) == [False, True]
+    assert np.isfinite(j.nearest_point_d_point).all() and np.isfinite(j.normal_d_pose).all()
+    with pytest.raises(ValueError, match=r"points\[2\]"):
+        s.distance_jacobians(np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, np.inf, 0.0]]))
+    with pytest.raises(TypeError):
+        s.distance_jacobians([1.0, 2.0, 3.0], method="exact")

@@ -1,5 +1,6 @@
 """The module answers what the C++ library answers, bitwise: the batched queries on the same
-input, one-point calls, and the pair queries (the C++ side is cpp_reference.cpp)."""
+input, one-point calls, the point Jacobians, and the pair queries with their Jacobians (the C++
+side is cpp_reference.cpp)."""
 import json
 import os
 import subprocess
@@ -75,6 +76,27 @@ def test_one_point_calls_are_bitwise_the_scalar_library(tmp_path, dtype):
         np.testing.assert_array_equal(q.normal, raw[4 * n + 3 * i:4 * n + 3 * i + 3])
 
 
+@pytest.mark.parametrize("dtype", [np.float64, np.float32])
+def test_point_jacobians_are_bitwise_the_libraries(tmp_path, dtype):
+    radii, exponents = SHAPE_PARAMETERS[2]
+    points = np.random.default_rng(23).uniform(-4, 4, size=(200, 3)).astype(dtype)
+    X = pose_matrix(5)
+    points.tofile(tmp_path / "points.bin")
+    reference({"query": "jacobians", "dtype": np.dtype(dtype).name, "radii": radii,
+               "exponents": exponents, "pose": X[:3].tolist(), "method": "exact",
+               "vectorize": False, "points": str(tmp_path / "points.bin"),
+               "out": str(tmp_path / "out.bin")})
+    raw = np.fromfile(tmp_path / "out.bin", dtype=dtype).reshape(len(points), -1)
+    j = fse.Superellipsoid(radii, exponents).distance_jacobians(points, X)
+    columns = np.cumsum([0, 1, 3, 3, 6, 5, 9, 18, 15, 9, 18, 15])
+    fields = ["distance", "nearest_point", "normal", "d_pose", "d_shape", "nearest_point_d_point",
+              "nearest_point_d_pose", "nearest_point_d_shape", "normal_d_point", "normal_d_pose",
+              "normal_d_shape"]
+    for k, field in enumerate(fields):
+        ours = getattr(j, field).reshape(len(points), -1)
+        np.testing.assert_array_equal(ours, raw[:, columns[k]:columns[k + 1]], err_msg=field)
+
+
 OTHERS = [
     ("box", [1.0, 2.0, 0.5], lambda v: fse.Box(*v)),
     ("sphere", [0.7], lambda v: fse.Sphere(*v)),
@@ -107,3 +129,27 @@ def test_pair_queries_are_bitwise_the_libraries(kind, values, make, offset):
     for c, e in zip(contacts, expected["contacts"]):
         assert c.position.tolist() == e["position"] and c.normal.tolist() == e["normal"]
         assert c.depth == e["depth"]
+    # The Jacobians, in either order of the shapes. The library answers the superellipsoid
+    # first: the other order swaps the sides and turns the normal, bitwise; two
+    # superellipsoids in the other order are answered from the other one's side (to 1e-6).
+    e = expected["jacobians"]
+    j = fse.distance_jacobians(s, X1, other, X2)
+    k = fse.distance_jacobians(other, X2, s, X1)
+    assert j.distance == e["distance"] and j.differentiable == e["differentiable"]
+    assert j.normal.tolist() == e["normal"]
+    assert j.d_pose1.tolist() == e["d_pose"] and j.d_pose2.tolist() == e["d_other_pose"]
+    assert j.d_shape1.tolist() == e["d_shape"]
+    swapped = ((j.point1_d_pose1, k.point2_d_pose2, "on_shape_d_pose"),
+               (j.point1_d_pose2, k.point2_d_pose1, "on_shape_d_other_pose"),
+               (j.point2_d_pose1, k.point1_d_pose2, "on_other_d_pose"),
+               (j.point2_d_pose2, k.point1_d_pose1, "on_other_d_other_pose"),
+               (j.normal_d_pose1, -k.normal_d_pose2, "normal_d_pose"),
+               (j.normal_d_pose2, -k.normal_d_pose1, "normal_d_other_pose"),
+               (j.d_pose1, k.d_pose2, "d_pose"), (j.d_pose2, k.d_pose1, "d_other_pose"),
+               (j.normal, -k.normal, "normal"))
+    for ours, theirs, name in swapped:
+        assert ours.ravel().tolist() == e[name], name
+        if kind == "superellipsoid":
+            np.testing.assert_allclose(theirs, ours, rtol=1e-6, atol=1e-8, err_msg=name)
+        else:
+            assert theirs.ravel().tolist() == e[name], name
