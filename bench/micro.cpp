@@ -25,6 +25,7 @@
 #include <random>
 #include <vector>
 
+#include "benchmark_pairs.h"
 #include "fcl_superellipsoid/batch_distance.h"
 #include "fcl_superellipsoid/contact_manifold.h"
 #include "fcl_superellipsoid/fcl_integration.h"
@@ -286,51 +287,15 @@ void runManifold(benchmark::State& state, ManifoldPartner partner, ManifoldCall 
 
 /// A pair's signed distance alone (the front end, signed, with the witnesses) against the same
 /// with its gradient (pairDistanceDerivatives), and with the Jacobians of its witnesses and
-/// normal too (DerivativeOrder::kJacobians), over 64 poses of a superellipsoid (ε = (0.6,
-/// 1.2), a rounded box-like body) around a partner, half of them overlapping (a quarter of the
-/// size deep at most), half apart (up to half the size).
-enum class PairPartner { kSuperellipsoid, kEllipsoid, kBox, kCapsule, kCylinder };
+/// normal too (DerivativeOrder::kJacobians), over the 64 poses of test_support/benchmark_pairs.h
+/// (on which the tests check these derivatives).
 enum class PairCall { kDistance, kGradient, kJacobians };
 
-void runPairGradient(benchmark::State& state, PairPartner partner, PairCall call) {
-  const auto body = std::make_shared<Superellipsoid<double>>(0.5, 0.4, 0.3, 0.6, 1.2);
-  std::shared_ptr<fcl::CollisionGeometry<double>> other;
-  switch (partner) {
-    case PairPartner::kSuperellipsoid:
-      other = std::make_shared<Superellipsoid<double>>(0.6, 0.5, 0.4, 0.3, 0.8);
-      break;
-    case PairPartner::kEllipsoid:
-      other = std::make_shared<fcl::Ellipsoid<double>>(0.6, 0.5, 0.4);
-      break;
-    case PairPartner::kBox:
-      other = std::make_shared<fcl::Box<double>>(1.2, 1.0, 0.8);
-      break;
-    case PairPartner::kCapsule:
-      other = std::make_shared<fcl::Capsule<double>>(0.3, 0.8);
-      break;
-    case PairPartner::kCylinder:
-      other = std::make_shared<fcl::Cylinder<double>>(0.4, 0.8);
-      break;
-  }
-  std::mt19937 rng(53);
-  std::normal_distribution<double> g;
-  std::uniform_real_distribution<double> gap(-0.25, 0.5);
+void runPairGradient(benchmark::State& state, test::BenchmarkPartner partner, PairCall call) {
+  const std::shared_ptr<Superellipsoid<double>> body = test::benchmarkBody();
+  const std::shared_ptr<fcl::CollisionGeometry<double>> other = test::benchmarkPartner(partner);
   const fcl::Transform3d X_WO = fcl::Transform3d::Identity();
-  std::vector<fcl::Transform3d> poses;
-  while (poses.size() < 64) {
-    fcl::Transform3d X = fcl::Transform3d::Identity();
-    X.linear() = Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
-    const Vector3<double> direction = Vector3<double>(g(rng), g(rng), g(rng)).normalized();
-    // Slide the body along `direction` until the pair's distance is the drawn gap (within 1e-3).
-    const double target = gap(rng) * body->size();
-    double t = 2.0;
-    for (int k = 0; k < 30; ++k) {
-      X.translation() = t * direction;
-      const double d = pairDistanceDerivatives(*body, X, *other, X_WO).distance;
-      t += target - d;
-    }
-    poses.push_back(X);
-  }
+  const std::vector<fcl::Transform3d> poses = test::benchmarkPoses(*body, *other);
   fcl::CollisionObjectd a(body), b(other, X_WO);
   fcl::DistanceRequestd request(true, true);
   std::size_t i = 0;
@@ -406,15 +371,11 @@ void registerAll() {
                                    });
     }
   }
-  for (const auto& [name, partner] :
-       {std::pair{"superellipsoid", PairPartner::kSuperellipsoid},
-        std::pair{"ellipsoid", PairPartner::kEllipsoid}, std::pair{"box", PairPartner::kBox},
-        std::pair{"capsule", PairPartner::kCapsule},
-        std::pair{"cylinder", PairPartner::kCylinder}}) {
+  for (const test::BenchmarkPartner partner : test::kBenchmarkPartners) {
     for (const auto& [label, call] : {std::pair{"PairDistance/", PairCall::kDistance},
                                       std::pair{"PairGradient/", PairCall::kGradient},
                                       std::pair{"PairJacobians/", PairCall::kJacobians}}) {
-      benchmark::RegisterBenchmark((std::string(label) + name).c_str(),
+      benchmark::RegisterBenchmark((std::string(label) + test::partnerName(partner)).c_str(),
                                    [partner = partner, call = call](benchmark::State& state) {
                                      runPairGradient(state, partner, call);
                                    });

@@ -43,8 +43,12 @@ bool hasSeveralSeparatingMoves(const ShapePair<S>& pair, const PairHit<S>& hit,
                                const SupportValue<S>& other_support, S tie, S scale) {
   if (hit.distance > tie) return false;
   const Vector3<S>& n = hit.normal;
+  // The superellipsoid's support function about its centre c is the same at n and at each of
+  // n's mirror images m: h_S(m) = h_S(n) − n·c + m·c, one support point for all eight.
+  const Vector3<S>& c = pair.X_WS->translation();
+  const S about_centre = shapeSupport(pair, n).dot(n) - n.dot(c);
   const auto F = [&](const Vector3<S>& m) {
-    return shapeSupport(pair, m).dot(m) + other_support(Vector3<S>(-m));
+    return about_centre + m.dot(c) + other_support(Vector3<S>(-m));
   };
   const S at_n = F(n);
   if (!std::isfinite(at_n)) return false;

@@ -9,6 +9,7 @@
 // hand back a point beside the other body's face. Such a pair is replaced by one that is on
 // both bodies and as far apart, found above a point of either face.
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
