@@ -383,7 +383,15 @@ void batchDistanceDerivatives(const Superellipsoid<S>& shape,
   result.d_pose.resize(6, n);
   result.d_shape.resize(5, n);
   result.differentiable.resize(n);
+  // With the SIMD kernel the parameter columns come from its lanes too (shapeGradientLanes, at
+  // the chunk's nearest points folded into the first octant: the columns do not depend on the
+  // octant), else from the scalar gauge derivatives, as the single query takes them.
+  const detail::NestedNorm<S> gauge = detail::NestedNorm<S>::gauge(shape);
   forEachChunk(n, options, [&](Eigen::Index first, Eigen::Index last) {
+    constexpr std::size_t kCapacity = std::size_t(kChunk) + detail::kMaxLanes;
+    std::array<S, kCapacity> point[3], d_shape[5];
+    std::array<Eigen::Index, kCapacity> vertex;
+    std::size_t count = 0;
     solver.solveChunk(
         first, last, [](const Vector3<S>&) { return true; },
         [&](Eigen::Index i, const VertexAnswer<S>& a) {
@@ -392,12 +400,37 @@ void batchDistanceDerivatives(const Superellipsoid<S>& shape,
           result.nearest_point.col(i) = r.nearest_point;
           result.normal.col(i) = r.normal;
           result.d_pose.col(i) = detail::poseGradient(r.normal, r.nearest_point);
-          result.d_shape.col(i) =
-              detail::shapeGradient(detail::gaugeDerivatives(shape, a.nearest_S, false));
+          if (options.vectorize) {
+            vertex[count] = i;
+            for (int c = 0; c < 3; ++c) point[c][count] = std::abs(a.nearest_S[c]);
+            ++count;
+          } else {
+            result.d_shape.col(i) =
+                detail::shapeGradient(detail::gaugeDerivatives(shape, a.nearest_S, false));
+          }
           result.differentiable[i] =
               !detail::hasSeveralNearestPoints(shape.size(), a.p_SV, a.nearest_S, r.distance,
                                                a.runner_up, options.distance.tolerance);
         });
+    if (count == 0) return;
+    const std::size_t lanes = detail::kVectorLanes<S>;
+    const std::size_t padded = (count + lanes - 1) / lanes * lanes;
+    for (std::size_t k = count; k < padded; ++k) {
+      for (int c = 0; c < 3; ++c) point[c][k] = point[c][count - 1];
+    }
+    const S* const points[3] = {point[0].data(), point[1].data(), point[2].data()};
+    S* const columns[5] = {d_shape[0].data(), d_shape[1].data(), d_shape[2].data(),
+                           d_shape[3].data(), d_shape[4].data()};
+    detail::shapeGradientLanes(gauge, points, columns, padded);
+    for (std::size_t k = 0; k < count; ++k) {
+      Vector5<S> column;
+      for (int j = 0; j < 5; ++j) column[j] = d_shape[j][k];
+      if (!column.allFinite()) {  // not seen; the scalar derivatives handle every range
+        const Vector3<S> folded(point[0][k], point[1][k], point[2][k]);
+        column = detail::shapeGradient(detail::gaugeDerivatives(shape, folded, false));
+      }
+      result.d_shape.col(vertex[k]) = column;
+    }
   });
   solver.reportStatistics();
 }
