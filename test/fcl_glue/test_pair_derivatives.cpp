@@ -331,24 +331,50 @@ TEST(PairDerivatives, GradientsMatchFiniteDifferencesOfTheTruth) {
               separated, overlapping);
 }
 
+/// The benchmark's configurations (test_support/benchmark_pairs.h) as the checks take them: its
+/// body and superellipsoid partner as RandomShapes, and each of its five partners with the 64
+/// poses of the body about it (the superellipsoid partner's `shape` points into `other`).
+struct BenchmarkConfigurations {
+  struct Partnered {
+    Partner partner;
+    bool smooth;  // the truth searches from a minimiser (truthStart)
+    std::vector<fcl::Transform3d> poses;
+  };
+  RandomShape body, other;
+  std::vector<Partnered> partners;
+
+  static std::unique_ptr<const BenchmarkConfigurations> make() {
+    auto out = std::make_unique<BenchmarkConfigurations>();
+    const double *b = kBenchmarkBody, *o = kBenchmarkSuperellipsoidPartner;
+    out->body = {V3(b[0], b[1], b[2]), b[3], b[4]};
+    out->other = {V3(o[0], o[1], o[2]), o[3], o[4]};
+    for (const BenchmarkPartner kind : kBenchmarkPartners) {
+      const bool is_superellipsoid = kind == BenchmarkPartner::kSuperellipsoid;
+      Partner partner{partnerName(kind), benchmarkPartner(kind),
+                      is_superellipsoid ? &out->other : nullptr};
+      std::vector<fcl::Transform3d> poses =
+          benchmarkPoses(superellipsoid(out->body), *partner.geometry);
+      out->partners.push_back({std::move(partner),
+                               is_superellipsoid || kind == BenchmarkPartner::kEllipsoid,
+                               std::move(poses)});
+    }
+    return out;
+  }
+};
+
 // The same on the configurations the benchmark times (test_support/benchmark_pairs.h: a
 // rounded box-like body about a superellipsoid, an ellipsoid, a box, a capsule and a cylinder),
 // an eighth of its 64 poses each, one move each.
 TEST(PairDerivatives, GradientsOnTheBenchmarksPairs) {
   std::mt19937 rng(57);
-  const RandomShape body{V3(kBenchmarkBody[0], kBenchmarkBody[1], kBenchmarkBody[2]),
-                         kBenchmarkBody[3], kBenchmarkBody[4]};
-  const double* p = kBenchmarkSuperellipsoidPartner;
-  const RandomShape other{V3(p[0], p[1], p[2]), p[3], p[4]};
+  const auto configurations = BenchmarkConfigurations::make();
+  const RandomShape& body = configurations->body;
   double worst = 0;
   int separated = 0, overlapping = 0;
-  for (const BenchmarkPartner kind : kBenchmarkPartners) {
-    const Partner partner{partnerName(kind), benchmarkPartner(kind),
-                          kind == BenchmarkPartner::kSuperellipsoid ? &other : nullptr};
-    const std::vector<fcl::Transform3d> poses =
-        benchmarkPoses(superellipsoid(body), *partner.geometry);
-    const bool smooth =
-        kind == BenchmarkPartner::kSuperellipsoid || kind == BenchmarkPartner::kEllipsoid;
+  for (const BenchmarkConfigurations::Partnered& entry : configurations->partners) {
+    const Partner& partner = entry.partner;
+    const std::vector<fcl::Transform3d>& poses = entry.poses;
+    const bool smooth = entry.smooth;
     for (std::size_t i = 0; i < poses.size(); i += 8) {
       SCOPED_TRACE(testing::Message() << partner.name << ", pose " << i);
       bool overlap = false;
@@ -538,19 +564,14 @@ TEST(PairDerivatives, JacobiansMatchFiniteDifferencesOfTheTruth) {
 // four of its 64 poses about each partner (each costs 26 evaluations of the truth).
 TEST(PairDerivatives, JacobiansOnTheBenchmarksPairs) {
   std::mt19937 rng(58);
-  const RandomShape body{V3(kBenchmarkBody[0], kBenchmarkBody[1], kBenchmarkBody[2]),
-                         kBenchmarkBody[3], kBenchmarkBody[4]};
-  const double* p = kBenchmarkSuperellipsoidPartner;
-  const RandomShape other{V3(p[0], p[1], p[2]), p[3], p[4]};
+  const auto configurations = BenchmarkConfigurations::make();
+  const RandomShape& body = configurations->body;
   double worst = 0;
   int separated = 0, overlapping = 0, bent = 0;
-  for (const BenchmarkPartner kind : kBenchmarkPartners) {
-    const Partner partner{partnerName(kind), benchmarkPartner(kind),
-                          kind == BenchmarkPartner::kSuperellipsoid ? &other : nullptr};
-    const std::vector<fcl::Transform3d> poses =
-        benchmarkPoses(superellipsoid(body), *partner.geometry);
-    const bool smooth =
-        kind == BenchmarkPartner::kSuperellipsoid || kind == BenchmarkPartner::kEllipsoid;
+  for (const BenchmarkConfigurations::Partnered& entry : configurations->partners) {
+    const Partner& partner = entry.partner;
+    const std::vector<fcl::Transform3d>& poses = entry.poses;
+    const bool smooth = entry.smooth;
     for (std::size_t i = 1; i < poses.size(); i += 16) {
       SCOPED_TRACE(testing::Message() << partner.name << ", pose " << i);
       const JacobianCheck c = checkJacobians(body, partner, poses[i], fcl::Transform3d::Identity(),
