@@ -26,7 +26,6 @@
 #include "common/invalid_argument.h"
 #include "common/tasks.h"
 #include "fcl_superellipsoid/point_distance.h"
-#include "shape/gauge_derivatives.h"
 #include "solvers/point_gradient.h"
 #include "solvers/solvers.h"
 
@@ -151,6 +150,7 @@ struct VertexAnswer {
   PointDistanceResult<S> result;  // nearest point and normal in the world frame
   Vector3<S> p_SV;                // the vertex in the shape's frame
   Vector3<S> nearest_S;           // the nearest point in the shape's frame
+  Vector3<S> normal_S;            // the normal there, in the shape's frame
   // With runner-ups (VertexSolver's `runner_ups`): the distance of the solver's runner-up
   // (solvers.h, Query::runner_up), ∞ for none; else NaN.
   S runner_up;
@@ -316,7 +316,7 @@ class VertexSolver {
   /// The answer r, in the shape's frame, with its nearest point and normal taken to W.
   VertexAnswer<S> inWorld(const PointDistanceResult<S>& r, const Vector3<S>& p_SV,
                           S runner_up) const {
-    VertexAnswer<S> a{r, p_SV, r.nearest_point, runner_up};
+    VertexAnswer<S> a{r, p_SV, r.nearest_point, r.normal, runner_up};
     a.result.nearest_point = X_WS_ * r.nearest_point;
     a.result.normal = X_WS_.linear() * r.normal;
     return a;
@@ -384,12 +384,12 @@ void batchDistanceDerivatives(const Superellipsoid<S>& shape,
   result.d_shape.resize(5, n);
   result.differentiable.resize(n);
   // With the SIMD kernel the parameter columns come from its lanes too (shapeGradientLanes, at
-  // the chunk's nearest points folded into the first octant: the columns do not depend on the
-  // octant), else from the scalar gauge derivatives, as the single query takes them.
+  // the chunk's nearest points and normals folded into the first octant: the columns do not
+  // depend on the octant), else as the single query takes them.
   const detail::NestedNorm<S> gauge = detail::NestedNorm<S>::gauge(shape);
   forEachChunk(n, options, [&](Eigen::Index first, Eigen::Index last) {
     constexpr std::size_t kCapacity = std::size_t(kChunk) + detail::kMaxLanes;
-    std::array<S, kCapacity> point[3], d_shape[5];
+    std::array<S, kCapacity> point[3], normal[3], d_shape[5];
     std::array<Eigen::Index, kCapacity> vertex;
     std::size_t count = 0;
     solver.solveChunk(
@@ -402,11 +402,13 @@ void batchDistanceDerivatives(const Superellipsoid<S>& shape,
           result.d_pose.col(i) = detail::poseGradient(r.normal, r.nearest_point);
           if (options.vectorize) {
             vertex[count] = i;
-            for (int c = 0; c < 3; ++c) point[c][count] = std::abs(a.nearest_S[c]);
+            for (int c = 0; c < 3; ++c) {
+              point[c][count] = std::abs(a.nearest_S[c]);
+              normal[c][count] = std::abs(a.normal_S[c]);
+            }
             ++count;
           } else {
-            result.d_shape.col(i) =
-                detail::shapeGradient(detail::gaugeDerivatives(shape, a.nearest_S, false));
+            result.d_shape.col(i) = detail::shapeGradient(shape, a.nearest_S, a.normal_S);
           }
           result.differentiable[i] =
               !detail::hasSeveralNearestPoints(shape.size(), a.p_SV, a.nearest_S, r.distance,
@@ -416,18 +418,22 @@ void batchDistanceDerivatives(const Superellipsoid<S>& shape,
     const std::size_t lanes = detail::kVectorLanes<S>;
     const std::size_t padded = (count + lanes - 1) / lanes * lanes;
     for (std::size_t k = count; k < padded; ++k) {
-      for (int c = 0; c < 3; ++c) point[c][k] = point[c][count - 1];
+      for (int c = 0; c < 3; ++c) {
+        point[c][k] = point[c][count - 1];
+        normal[c][k] = normal[c][count - 1];
+      }
     }
     const S* const points[3] = {point[0].data(), point[1].data(), point[2].data()};
+    const S* const normals[3] = {normal[0].data(), normal[1].data(), normal[2].data()};
     S* const columns[5] = {d_shape[0].data(), d_shape[1].data(), d_shape[2].data(),
                            d_shape[3].data(), d_shape[4].data()};
-    detail::shapeGradientLanes(gauge, points, columns, padded);
+    detail::shapeGradientLanes(gauge, points, normals, columns, padded);
     for (std::size_t k = 0; k < count; ++k) {
       Vector5<S> column;
       for (int j = 0; j < 5; ++j) column[j] = d_shape[j][k];
-      if (!column.allFinite()) {  // not seen; the scalar derivatives handle every range
-        const Vector3<S> folded(point[0][k], point[1][k], point[2][k]);
-        column = detail::shapeGradient(detail::gaugeDerivatives(shape, folded, false));
+      if (!column.allFinite()) {  // not seen; the scalar logarithms handle every range
+        column = detail::shapeGradient(shape, Vector3<S>(point[0][k], point[1][k], point[2][k]),
+                                       Vector3<S>(normal[0][k], normal[1][k], normal[2][k]));
       }
       result.d_shape.col(vertex[k]) = column;
     }

@@ -109,8 +109,6 @@ HWY_INLINE hn::Vec<D> Pow(D d, hn::Vec<D> x, hn::Vec<D> p) {
 template <class D>
 struct PNorm2Lanes {
   hn::Vec<D> norm, pow_a, pow_b, log_1pq;
-  hn::Vec<D> log_t;  // log(min(a, b)/max(a, b)) (any finite value where min(a, b) = 0)
-  hn::Mask<D> a_larger;
 };
 
 /// log_ratio, if given, is log(min(a, b)/max(a, b)) (any value where min(a, b) = 0).
@@ -142,12 +140,8 @@ HWY_INLINE PNorm2Lanes<D> PNorm2WithPowers(D d, hn::Vec<D> a, hn::Vec<D> b, hn::
   }
   const hn::Vec<D> pow_lo = hn::IfThenElseZero(lo_positive, hn::Mul(ratio_pow, pow_m));
   const auto a_larger = hn::Ge(a, b);
-  return {n,
-          hn::IfThenElseZero(m_positive, hn::IfThenElse(a_larger, pow_m, pow_lo)),
-          hn::IfThenElseZero(m_positive, hn::IfThenElse(a_larger, pow_lo, pow_m)),
-          log_1pq,
-          log_t,
-          a_larger};
+  return {n, hn::IfThenElseZero(m_positive, hn::IfThenElse(a_larger, pow_m, pow_lo)),
+          hn::IfThenElseZero(m_positive, hn::IfThenElse(a_larger, pow_lo, pow_m)), log_1pq};
 }
 
 /// Both levels of the nested norm at u = (scaled) w ≥ 0. The second level's ratio is
@@ -912,78 +906,47 @@ void GaugeLanes(const NestedNorm<T>& primal, const T* const query[3], T* gauge, 
   }
 }
 
-/// ∂G/∂θ/‖∇G‖ at n first-octant surface points (shapeGradientLanes): gauge_derivatives.h's
-/// first order, lane-wise, from EvaluateLevels' powers and logarithms.
+/// ∂d/∂θ at n first-octant surface points with their normals (shapeGradientLanes):
+/// point_gradient.h's shapeGradient, lane-wise.
 template <typename T>
-void ShapeGradientLanes(const NestedNorm<T>& primal, const T* const point[3], T* const d_shape[5],
-                        std::size_t n) {
+void ShapeGradientLanes(const NestedNorm<T>& primal, const T* const point[3],
+                        const T* const normal[3], T* const d_shape[5], std::size_t n) {
   using D = hn::ScalableTag<T>;
   using V = hn::Vec<D>;
   const D d;
   static_assert(hn::MaxLanes(D()) <= kVectorLanes<T>, "kVectorLanes is too small for this target");
-  const NormLanes<D> c(d, primal);
-  const V zero = hn::Zero(d), one = hn::Set(d, 1);
-  const V minus_half_p1 = hn::Set(d, -primal.p1 / 2), minus_half_p2 = hn::Set(d, -primal.p2 / 2);
-  // ln t of a level's arguments: the larger's is −ln(1 + q)/p, the smaller's ln(ratio) more;
-  // t^(p−1)·ln t of each, 0 where t = 0.
-  struct PowLogs {
-    V a, b;
-  };
-  auto powLogs = [&](const PNorm2Lanes<D>& level, V inv_p, V t_a, V t_b) {
-    const V larger = hn::Neg(hn::Mul(level.log_1pq, inv_p));
-    const V smaller = hn::Add(level.log_t, larger);
-    const V ln_a = hn::IfThenElse(level.a_larger, larger, smaller);
-    const V ln_b = hn::IfThenElse(level.a_larger, smaller, larger);
-    const auto a_counts = hn::And(hn::Gt(t_a, zero), hn::Gt(level.pow_a, zero));
-    const auto b_counts = hn::And(hn::Gt(t_b, zero), hn::Gt(level.pow_b, zero));
-    return PowLogs{hn::IfThenElseZero(a_counts, hn::Mul(level.pow_a, ln_a)),
-                   hn::IfThenElseZero(b_counts, hn::Mul(level.pow_b, ln_b))};
+  const V zero = hn::Zero(d), one = hn::Set(d, 1), half = hn::Set(d, T(0.5));
+  const V s0 = hn::Set(d, primal.scale[0]), s1 = hn::Set(d, primal.scale[1]);
+  const V s2 = hn::Set(d, primal.scale[2]);
+  // φ(x, y) = ln(1 + q) − q·ln q/(1 + q), q = min(x, y)/max(x, y); 0 where min(x, y) = 0.
+  auto phi = [&](V x, V y) {
+    const V smaller = hn::Min(x, y), larger = hn::Max(x, y);
+    const auto positive = hn::Gt(smaller, zero);
+    const V q =
+        hn::Div(hn::IfThenElse(positive, smaller, one), hn::IfThenElse(positive, larger, one));
+    const V value = hn::Sub(hn::Log1p(d, q), hn::Div(hn::Mul(q, hn::Log(d, q)), hn::Add(one, q)));
+    return hn::IfThenElseZero(positive, value);
   };
   for (std::size_t i = 0; i < n; i += hn::Lanes(d)) {
-    const Vec3<D> w = LoadVec3(d, point, i);
-    const V u0 = hn::Mul(w.x, c.s0), u1 = hn::Mul(w.y, c.s1), u2 = hn::Mul(w.z, c.s2);
-    const NestedLevels<D> levels = EvaluateLevels(d, c, u0, u1, u2);
-    const PNorm2Lanes<D>& level1 = levels.level1;
-    const PNorm2Lanes<D>& level2 = levels.level2;
-    const V r = level1.norm, norm = level2.norm;
-    const V r1 = level1.pow_a, r2 = level1.pow_b, g_r = level2.pow_a, g_3 = level2.pow_b;
-    const V gradient0 = hn::Mul(hn::Mul(g_r, r1), c.s0);
-    const V gradient1 = hn::Mul(hn::Mul(g_r, r2), c.s1);
-    const V gradient2 = hn::Mul(g_3, c.s2);
-    const V gradient_norm = hn::Sqrt(hn::MulAdd(
-        gradient0, gradient0, hn::MulAdd(gradient1, gradient1, hn::Mul(gradient2, gradient2))));
-    const auto r_positive = hn::Gt(r, zero), norm_positive = hn::Gt(norm, zero);
-    const V inv_r =
-        hn::IfThenElseZero(r_positive, hn::Div(one, hn::IfThenElse(r_positive, r, one)));
-    const V inv_norm =
-        hn::IfThenElseZero(norm_positive, hn::Div(one, hn::IfThenElse(norm_positive, norm, one)));
-    const V t1 = hn::Mul(u0, inv_r), t2 = hn::Mul(u1, inv_r);
-    const V tr = hn::Mul(r, inv_norm), t3 = hn::Mul(u2, inv_norm);
-    const PowLogs logs1 = powLogs(level1, c.inv_p1, t1, t2);
-    const PowLogs logs2 = powLogs(level2, c.inv_p2, tr, t3);
-    const V l1 = hn::MulAdd(t1, logs1.a, hn::Mul(t2, logs1.b));  // Σ t^p1 ln t
-    const V l2 = hn::MulAdd(tr, logs2.a, hn::Mul(t3, logs2.b));
-    // ∂G/∂a_j = −(∂G/∂w_j)·w_j/a_j = −(∂G/∂w_j)·u_j; ∂G/∂ε1 = −(p1/2)·g_r·r·l1,
-    // ∂G/∂ε2 = −(p2/2)·G·l2; all over ‖∇G‖ (0 where it is: the centre, no surface point).
-    const auto valid = hn::Gt(gradient_norm, zero);
-    const V inv_gradient =
-        hn::IfThenElseZero(valid, hn::Div(one, hn::IfThenElse(valid, gradient_norm, one)));
-    const V out[5] = {hn::Neg(hn::Mul(hn::Mul(gradient0, u0), inv_gradient)),
-                      hn::Neg(hn::Mul(hn::Mul(gradient1, u1), inv_gradient)),
-                      hn::Neg(hn::Mul(hn::Mul(gradient2, u2), inv_gradient)),
-                      hn::Mul(hn::Mul(minus_half_p1, hn::Mul(hn::Mul(g_r, r), l1)), inv_gradient),
-                      hn::Mul(hn::Mul(minus_half_p2, hn::Mul(norm, l2)), inv_gradient)};
+    const Vec3<D> p = LoadVec3(d, point, i), m = LoadVec3(d, normal, i);
+    const V b0 = hn::Abs(hn::Mul(p.x, m.x)), b1 = hn::Abs(hn::Mul(p.y, m.y));
+    const V b2 = hn::Abs(hn::Mul(p.z, m.z));
+    const V b01 = hn::Add(b0, b1);
+    const V out[5] = {hn::Neg(hn::Mul(b0, s0)), hn::Neg(hn::Mul(b1, s1)), hn::Neg(hn::Mul(b2, s2)),
+                      hn::Mul(hn::Mul(half, b01), phi(b0, b1)),
+                      hn::Mul(hn::Mul(half, hn::Add(b01, b2)), phi(b01, b2))};
     for (int k = 0; k < 5; ++k) hn::StoreU(out[k], d, d_shape[k] + i);
   }
 }
 
 void ShapeGradientLanesFloat(const NestedNorm<float>& primal, const float* const point[3],
-                             float* const d_shape[5], std::size_t n) {
-  ShapeGradientLanes(primal, point, d_shape, n);
+                             const float* const normal[3], float* const d_shape[5], std::size_t n) {
+  ShapeGradientLanes(primal, point, normal, d_shape, n);
 }
 void ShapeGradientLanesDouble(const NestedNorm<double>& primal, const double* const point[3],
-                              double* const d_shape[5], std::size_t n) {
-  ShapeGradientLanes(primal, point, d_shape, n);
+                              const double* const normal[3], double* const d_shape[5],
+                              std::size_t n) {
+  ShapeGradientLanes(primal, point, normal, d_shape, n);
 }
 
 void GaugeLanesFloat(const NestedNorm<float>& primal, const float* const query[3], float* gauge,
@@ -1041,12 +1004,12 @@ HWY_EXPORT(ShapeGradientLanesFloat);
 HWY_EXPORT(ShapeGradientLanesDouble);
 
 void shapeGradientLanes(const NestedNorm<float>& primal, const float* const point[3],
-                        float* const d_shape[5], std::size_t n) {
-  HWY_DYNAMIC_DISPATCH(ShapeGradientLanesFloat)(primal, point, d_shape, n);
+                        const float* const normal[3], float* const d_shape[5], std::size_t n) {
+  HWY_DYNAMIC_DISPATCH(ShapeGradientLanesFloat)(primal, point, normal, d_shape, n);
 }
 void shapeGradientLanes(const NestedNorm<double>& primal, const double* const point[3],
-                        double* const d_shape[5], std::size_t n) {
-  HWY_DYNAMIC_DISPATCH(ShapeGradientLanesDouble)(primal, point, d_shape, n);
+                        const double* const normal[3], double* const d_shape[5], std::size_t n) {
+  HWY_DYNAMIC_DISPATCH(ShapeGradientLanesDouble)(primal, point, normal, d_shape, n);
 }
 
 void gaugeLanes(const NestedNorm<float>& primal, const float* const query[3], float* gauge,

@@ -113,16 +113,15 @@ void gaugeLanes(const NestedNorm<float>& primal, const float* const query[3], fl
 void gaugeLanes(const NestedNorm<double>& primal, const double* const query[3], double* gauge,
                 std::size_t n);
 
-/// The gradient of the distance with respect to the shape's parameters (a1, a2, a3, ε1, ε2),
-/// (∂G/∂θ)/‖∇G‖ (solvers/point_gradient.h, shapeGradient), at n first-octant surface points
-/// point[0..2][i], lane by lane, into d_shape[0..4][i], with the kernel's powers and logarithms
-/// (within a few ulps of gaugeDerivatives' first order). 0 where ∇G = 0 (the centre, which no
-/// surface point is). n must be a multiple of kVectorLanes<T>. The batched derivatives
-/// (batchDistanceDerivatives) take their parameter columns from it.
+/// The gradient of the distance with respect to the shape's parameters (a1, a2, a3, ε1, ε2) at n
+/// first-octant surface points point[0..2][i] with their unit outward normals normal[0..2][i],
+/// lane by lane, into d_shape[0..4][i]: solvers/point_gradient.h's shapeGradient with the
+/// kernel's logarithms (within a few ulps). n must be a multiple of kVectorLanes<T>. The batched
+/// derivatives (batchDistanceDerivatives) take their parameter columns from it.
 void shapeGradientLanes(const NestedNorm<float>& primal, const float* const point[3],
-                        float* const d_shape[5], std::size_t n);
+                        const float* const normal[3], float* const d_shape[5], std::size_t n);
 void shapeGradientLanes(const NestedNorm<double>& primal, const double* const point[3],
-                        double* const d_shape[5], std::size_t n);
+                        const double* const normal[3], double* const d_shape[5], std::size_t n);
 
 }  // namespace detail
 }  // namespace fcl_superellipsoid

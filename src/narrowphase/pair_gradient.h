@@ -12,20 +12,19 @@
 
 #include "fcl_superellipsoid/pair_derivatives.h"
 #include "narrowphase/shape_pair.h"
-#include "shape/gauge_derivatives.h"
 #include "solvers/exact_rules.h"
 #include "solvers/point_gradient.h"
 
 namespace fcl_superellipsoid {
 namespace detail {
 
-/// ∂d/∂θ of a superellipsoid at its witness point p_W (world), posed by X_WS: (∂G/∂θ)/‖∇G‖
-/// there, the rate at which the surface moves inwards (point_gradient.h, shapeGradient).
+/// ∂d/∂θ of a superellipsoid at its witness point p_W with its outward normal n_W there (world),
+/// posed by X_WS: the rate at which the surface moves inwards (point_gradient.h, shapeGradient).
 template <typename S>
 Vector5<S> witnessShapeGradient(const Superellipsoid<S>& shape, const fcl::Transform3<S>& X_WS,
-                                const Vector3<S>& p_W) {
+                                const Vector3<S>& p_W, const Vector3<S>& n_W) {
   const Vector3<S> p_S = X_WS.inverse(Eigen::Isometry) * p_W;
-  return shapeGradient(gaugeDerivatives(shape, p_S, false));
+  return shapeGradient(shape, p_S, Vector3<S>(X_WS.linear().transpose() * n_W));
 }
 
 /// The support function of the other geometry, h_O(v) = max over it of v·x (world; +∞ where
@@ -81,11 +80,12 @@ void pairGradient(const ShapePair<S>& pair, const PairHit<S>& hit,
   out.normal = hit.normal;
   out.d_pose = poseGradient(hit.normal, hit.on_shape);         // (n × N_S, −n)
   out.d_other_pose = -poseGradient(hit.normal, hit.on_other);  // (N_O × n, n)
-  out.d_shape = witnessShapeGradient(*pair.shape, *pair.X_WS, hit.on_shape);
+  out.d_shape = witnessShapeGradient(*pair.shape, *pair.X_WS, hit.on_shape, hit.normal);
   out.other_is_superellipsoid = other_shape != nullptr;
-  out.d_other_shape = other_shape != nullptr
-                          ? witnessShapeGradient(*other_shape, *pair.X_WO, hit.on_other)
-                          : Vector5<S>::Zero();
+  out.d_other_shape =
+      other_shape != nullptr
+          ? witnessShapeGradient(*other_shape, *pair.X_WO, hit.on_other, Vector3<S>(-hit.normal))
+          : Vector5<S>::Zero();
 }
 
 }  // namespace detail

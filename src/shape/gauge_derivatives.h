@@ -49,23 +49,25 @@ GaugeDerivatives<S> gaugeDerivatives(const Superellipsoid<S>& shape, const Vecto
   out.hessian.setZero();
   out.d_parameters.setZero();
   out.gradient_d_parameters.setZero();
-  const Vector3<S> u = w.cwiseProduct(g.scale);
+  // u = factor·(w ⊙ scale), factor = 1 unless a product would be subnormal (NestedNorm::scaled):
+  // the ratios are u's, the value and r are taken back by the factor, the Hessian by 1/factor.
+  const auto [u, factor] = g.scaled(w);
   if (!(std::max(u[0], u[1]) > S(0)) && !(u[2] > S(0))) {  // the centre
     out.value = S(0);
     out.gradient.setZero();
     return out;
   }
-  // One evaluation of the levels gives G, ∇G and every power and logarithm below
+  // One evaluation of the levels gives G, ∇G, ∇²G and every power and logarithm below
   // (nested_norm.h: ∂G/∂u = (g_r·r1, g_r·r2, g_3), r1 = t1^(p1−1), ...).
   const typename NestedNorm<S>::Levels l = g.levels(u);
-  const S norm = l.norm, r = l.r;
+  const S norm = l.norm / factor, r = l.r / factor;
   const S r1 = l.level1.pow_a, r2 = l.level1.pow_b, g_r = l.level2.pow_a, g_3 = l.level2.pow_b;
   out.value = norm;
   const Vector3<S> gradient_w = Vector3<S>(g_r * r1, g_r * r2, g_3).cwiseProduct(g.scale);
   out.gradient = gradient_w.cwiseProduct(sign);
   Eigen::Matrix<S, 3, 3> hessian_w = Eigen::Matrix<S, 3, 3>::Zero();
   if (second_order) {
-    hessian_w = g.evaluate(w, true).hessian;
+    hessian_w = g.hessian(u, l) * factor;
     out.hessian = sign.asDiagonal() * hessian_w * sign.asDiagonal();
   }
   // ln t of a level's arguments: the larger's is −ln(1 + q)/p, the smaller's ln(ratio) more.
@@ -77,8 +79,8 @@ GaugeDerivatives<S> gaugeDerivatives(const Superellipsoid<S>& shape, const Vecto
   };
   const auto [ln_t1, ln_t2] = logs(l.level1, g.inv_p1);
   const auto [ln_tr, ln_t3] = logs(l.level2, g.inv_p2);
-  const S t1 = r > S(0) ? u[0] / r : S(0), t2 = r > S(0) ? u[1] / r : S(0);
-  const S tr = r / norm, t3 = u[2] / norm;
+  const S t1 = l.r > S(0) ? u[0] / l.r : S(0), t2 = l.r > S(0) ? u[1] / l.r : S(0);
+  const S tr = l.r / l.norm, t3 = u[2] / l.norm;
   // t^(p−1)·ln t, 0 where t = 0. (Where the levels' quotient of the arguments overflowed, a
   // ratio below the format's range that is not 0 has ln t = −∞ there: its own logarithm.)
   auto powLog = [](S t, S pow_pm1, S ln_t) {
@@ -120,13 +122,13 @@ GaugeDerivatives<S> gaugeDerivatives(const Superellipsoid<S>& shape, const Vecto
   for (int j = 0; j < 3; ++j) out.gradient_d_parameters.row(j) *= sign[j];
 
   // Creases: a level with p < 2 has unbounded curvature across its coordinate planes.
-  if (g.p1 < S(2) && r > S(0)) {
+  if (g.p1 < S(2) && l.r > S(0)) {
     out.crease[0] = u[0] == S(0);
     out.crease[1] = u[1] == S(0);
   }
   if (g.p2 < S(2)) {
-    out.crease[2] = u[2] == S(0) && r > S(0);
-    if (!(r > S(0))) out.crease[0] = out.crease[1] = true;
+    out.crease[2] = u[2] == S(0) && l.r > S(0);
+    if (!(l.r > S(0))) out.crease[0] = out.crease[1] = true;
   }
   return out;
 }

@@ -199,7 +199,6 @@ struct NestedNorm {
       return out;
     }
     const Levels l = levels(u);
-    const S r = l.r;
     out.value = l.norm;
     // Ratios t ∈ [0, 1] of each argument to its norm, and their powers. With
     // N(a, b) = ‖(a, b)‖_p:  ∂N/∂a = (a/N)^(p−1),
@@ -213,8 +212,22 @@ struct NestedNorm {
       if (factor != S(1)) out.value /= factor;
       return out;
     }
+    out.hessian = hessian(u, l);
+    if (factor != S(1)) {
+      out.value /= factor;
+      out.hessian *= factor;
+    }
+    return out;
+  }
+
+  /// ∂²N/∂w² at u = w ⊙ scale ≥ 0 (u ≠ 0) from its levels l = levels(u) (evaluate's, and the
+  /// derivatives' in gauge_derivatives.h).
+  Eigen::Matrix<S, 3, 3> hessian(const Vector3<S>& u, const Levels& l) const {
+    const S r = l.r;
+    const S r1 = l.level1.pow_a, r2 = l.level1.pow_b;    // t1^(p1−1), t2^(p1−1)
+    const S g_r = l.level2.pow_a, g_3 = l.level2.pow_b;  // tr^(p2−1), t3^(p2−1)
     const S t1 = r > S(0) ? u[0] / r : S(0), t2 = r > S(0) ? u[1] / r : S(0);
-    const S tr = r / out.value, t3 = u[2] / out.value;
+    const S tr = r / l.norm, t3 = u[2] / l.norm;
 
     // (t)^(p−2) = t^(p−1)/t; a floor on t keeps it finite when p < 2 (the Hessian is
     // unbounded there: this is the singularity the solver works around, not hides). For p = 2
@@ -230,7 +243,7 @@ struct NestedNorm {
       const S r11 = c1 * powMinus2(t1, r1, p1) * (t2 * r2);  // (t2)^p1 = t2·t2^(p1−1)
       const S r22 = c1 * powMinus2(t2, r2, p1) * (t1 * r1);
       const S r12 = -c1 * r1 * r2;
-      const S c2 = (p2 - S(1)) / out.value;
+      const S c2 = (p2 - S(1)) / l.norm;
       const S g_rr = c2 * powMinus2(tr, g_r, p2) * (t3 * g_3);
       const S g_r3 = -c2 * g_r * g_3;
       h_u(0, 0) = g_rr * r1 * r1 + g_r * r11;
@@ -239,14 +252,9 @@ struct NestedNorm {
       h_u(0, 2) = h_u(2, 0) = g_r3 * r1;
       h_u(1, 2) = h_u(2, 1) = g_r3 * r2;
     }
-    const S c2 = (p2 - S(1)) / out.value;
+    const S c2 = (p2 - S(1)) / l.norm;
     h_u(2, 2) = c2 * powMinus2(t3, g_3, p2) * (tr * g_r);
-    out.hessian = scale.asDiagonal() * h_u * scale.asDiagonal();
-    if (factor != S(1)) {
-      out.value /= factor;
-      out.hessian *= factor;
-    }
-    return out;
+    return scale.asDiagonal() * h_u * scale.asDiagonal();
   }
 };
 

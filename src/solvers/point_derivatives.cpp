@@ -11,6 +11,7 @@
 #include "fcl_superellipsoid/point_derivatives.h"
 
 #include <Eigen/Dense>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -37,6 +38,58 @@ Eigen::Matrix<S, 3, 3> cross(const Vector3<S>& v) {
   return m;
 }
 
+/// A·X = B by Gaussian elimination with full pivoting, as Eigen's FullPivLU solves it (a pivot at
+/// most N·ε_machine times the first, largest one counts as 0, and the unknowns past the rank are
+/// 0), in straight loops: FullPivLU's general kernels cost three times the whole 4×4 solve. NaN
+/// where A is not finite.
+template <typename S, int N, int R>
+Eigen::Matrix<S, N, R> solveFullPivot(Eigen::Matrix<S, N, N> a, Eigen::Matrix<S, N, R> b) {
+  if (!a.allFinite()) return Eigen::Matrix<S, N, R>::Constant(std::numeric_limits<S>::quiet_NaN());
+  std::array<int, N> column;
+  for (int i = 0; i < N; ++i) column[i] = i;
+  const S threshold = std::numeric_limits<S>::epsilon() * S(N);
+  S first = S(0);
+  int rank = 0;
+  for (int k = 0; k < N; ++k) {
+    int row = k, col = k;
+    S largest = S(0);
+    for (int j = k; j < N; ++j) {
+      for (int i = k; i < N; ++i) {
+        if (std::abs(a(i, j)) > largest) {
+          largest = std::abs(a(i, j));
+          row = i;
+          col = j;
+        }
+      }
+    }
+    if (k == 0) first = largest;
+    if (!(largest > threshold * first)) break;  // also a first pivot of 0
+    a.row(k).swap(a.row(row));
+    b.row(k).swap(b.row(row));
+    a.col(k).swap(a.col(col));
+    std::swap(column[k], column[col]);
+    const S inverse = S(1) / a(k, k);
+    for (int i = k + 1; i < N; ++i) {
+      const S f = a(i, k) * inverse;
+      for (int j = k + 1; j < N; ++j) a(i, j) -= f * a(k, j);
+      for (int c = 0; c < R; ++c) b(i, c) -= f * b(k, c);
+    }
+    rank = k + 1;
+  }
+  Eigen::Matrix<S, N, R> y = Eigen::Matrix<S, N, R>::Zero();  // the permuted unknowns
+  for (int i = rank - 1; i >= 0; --i) {
+    const S inverse = S(1) / a(i, i);
+    for (int c = 0; c < R; ++c) {
+      S v = b(i, c);
+      for (int j = i + 1; j < rank; ++j) v -= a(i, j) * y(j, c);
+      y(i, c) = v * inverse;
+    }
+  }
+  Eigen::Matrix<S, N, R> x;
+  for (int i = 0; i < N; ++i) x.row(column[i]) = y.row(i);
+  return x;
+}
+
 /// The pose columns (ω, v) of a point's and a normal's Jacobians from their Q Jacobians, all in
 /// one frame (point_derivatives.h): moving the shape by ξ moves N by ω × N + v and Q, seen from
 /// the shape, by −(ω × Q + v).
@@ -50,45 +103,18 @@ void poseJacobians(const Vector3<S>& q, PointDistanceDerivatives<S>* out) {
   out->normal_d_pose << -cross(normal) + out->normal_d_query * qx, -out->normal_d_query;
 }
 
+/// The second order (the Jacobians and their `differentiable` test) of the query q's answer in
+/// *out, which holds the first order: a function of its own, so that the gradient alone does not
+/// set up its frame.
 template <typename S>
-PointDistanceDerivatives<S> derivativesInShapeFrame(const Superellipsoid<S>& shape,
-                                                    const Vector3<S>& q, DerivativeOrder order,
-                                                    const DistanceOptions<S>& options) {
-  detail::validateQuery("pointDistanceDerivatives", q, options);
-  if (options.method != DistanceMethod::kExact) {
-    detail::throwInvalidArgument("pointDistanceDerivatives",
-                                 "options.method must be DistanceMethod::kExact",
-                                 std::string(toString(options.method)));
-  }
-  if (order != DerivativeOrder::kGradient && order != DerivativeOrder::kJacobians) {
-    detail::throwInvalidArgument("pointDistanceDerivatives", "order must be a DerivativeOrder",
-                                 static_cast<int>(order));
-  }
-  PointDistanceDerivatives<S> out;
-  S runner_up = std::numeric_limits<S>::infinity();
-  out.value = detail::solve<S>(shape, q, nullptr, options, &runner_up);
+EIGEN_DONT_INLINE void addJacobians(const Superellipsoid<S>& shape, const Vector3<S>& q,
+                                    PointDistanceDerivatives<S>* out_pointer) {
+  PointDistanceDerivatives<S>& out = *out_pointer;
   const Vector3<S>& point = out.value.nearest_point;
   const Vector3<S>& n = out.value.normal;
   const S d = out.value.distance;
-  const bool jacobians = order == DerivativeOrder::kJacobians;
-  const detail::GaugeDerivatives<S> gauge = detail::gaugeDerivatives(shape, point, jacobians);
+  const detail::GaugeDerivatives<S> gauge = detail::gaugeDerivatives(shape, point, true);
   const S g = gauge.gradient.norm();
-
-  out.d_query = n;
-  out.d_pose = detail::poseGradient(n, point);
-  out.d_shape = detail::shapeGradient(gauge);
-  out.differentiable =
-      !detail::hasSeveralNearestPoints(shape.size(), q, point, d, runner_up, options.tolerance);
-
-  if (!jacobians) {
-    out.nearest_point_d_query.setZero();
-    out.nearest_point_d_pose.setZero();
-    out.nearest_point_d_shape.setZero();
-    out.normal_d_query.setZero();
-    out.normal_d_pose.setZero();
-    out.normal_d_shape.setZero();
-    return out;
-  }
   const S lambda = d / g;
   const S floor = std::sqrt(std::numeric_limits<S>::epsilon());
   // Inside, Q at a centre of curvature of N: an eigenvalue 1 + λ·(curvature) of the system in
@@ -142,7 +168,7 @@ PointDistanceDerivatives<S> derivativesInShapeFrame(const Superellipsoid<S>& sha
                       std::numeric_limits<S>::min());
   const Eigen::Matrix<S, 4, 4> scaled = scale.asDiagonal() * system * scale.asDiagonal();
   Eigen::Matrix<S, 4, 8> solution =
-      scale.asDiagonal() * scaled.fullPivLu().solve(scale.asDiagonal() * rhs);
+      scale.asDiagonal() * solveFullPivot<S, 4, 8>(scaled, scale.asDiagonal() * rhs);
   if (!solution.allFinite() && lambda < S(0)) {
     // Singular (Q at a centre of curvature): the floored tangent-plane inverse instead.
     const Eigen::Matrix<S, 3, 3> projector = tangent * k_inverse * tangent.transpose();
@@ -169,6 +195,44 @@ PointDistanceDerivatives<S> derivativesInShapeFrame(const Superellipsoid<S>& sha
     if (crease) out.differentiable = false;  // on the surface at a crease: a normal cone
   }
   poseJacobians(q, &out);
+}
+
+template <typename S>
+PointDistanceDerivatives<S> derivativesInShapeFrame(const Superellipsoid<S>& shape,
+                                                    const Vector3<S>& q, DerivativeOrder order,
+                                                    const DistanceOptions<S>& options) {
+  detail::validateQuery("pointDistanceDerivatives", q, options);
+  if (options.method != DistanceMethod::kExact) {
+    detail::throwInvalidArgument("pointDistanceDerivatives",
+                                 "options.method must be DistanceMethod::kExact",
+                                 std::string(toString(options.method)));
+  }
+  if (order != DerivativeOrder::kGradient && order != DerivativeOrder::kJacobians) {
+    detail::throwInvalidArgument("pointDistanceDerivatives", "order must be a DerivativeOrder",
+                                 static_cast<int>(order));
+  }
+  PointDistanceDerivatives<S> out;
+  S runner_up = std::numeric_limits<S>::infinity();
+  out.value = detail::solve<S>(shape, q, nullptr, options, &runner_up);
+  const Vector3<S>& point = out.value.nearest_point;
+  const Vector3<S>& n = out.value.normal;
+  const S d = out.value.distance;
+  out.d_query = n;
+  out.d_pose = detail::poseGradient(n, point);
+  out.d_shape = detail::shapeGradient(shape, point, n);
+  out.differentiable =
+      !detail::hasSeveralNearestPoints(shape.size(), q, point, d, runner_up, options.tolerance);
+
+  if (order == DerivativeOrder::kJacobians) {
+    addJacobians(shape, q, &out);
+  } else {
+    out.nearest_point_d_query.setZero();
+    out.nearest_point_d_pose.setZero();
+    out.nearest_point_d_shape.setZero();
+    out.normal_d_query.setZero();
+    out.normal_d_pose.setZero();
+    out.normal_d_shape.setZero();
+  }
   return out;
 }
 

@@ -7,10 +7,11 @@
 // docs/math.md → "Derivatives of the distance".
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 
 #include "fcl_superellipsoid/point_derivatives.h"
-#include "shape/gauge_derivatives.h"
+#include "fcl_superellipsoid/superellipsoid.h"
 #include "solvers/exact_rules.h"
 
 namespace fcl_superellipsoid {
@@ -26,10 +27,35 @@ Vector6<S> poseGradient(const Vector3<S>& normal, const Vector3<S>& point) {
   return out;
 }
 
-/// ∂d/∂θ = (∂G/∂θ)/‖∇G‖ at the nearest point (the shape's frame), from G's derivatives there.
+/// ∂d/∂θ = (∂G/∂θ)/‖∇G‖ at a surface point N with its unit outward normal n (the shape's frame,
+/// any octant), written in N and n alone (docs/math.md → "Derivatives of the distance"): with
+/// b_i = |N_i·n_i|, whose sum is N·n = G/‖∇G‖ (Euler), and
+/// φ(x, y) = ln(1 + q) − q·ln q/(1 + q), q = min(x, y)/max(x, y) (−Σ s·ln s over the shares
+/// s = x/(x + y), y/(x + y) of a level),
+///   ∂d/∂a_j = −b_j/a_j,
+///   ∂d/∂ε1 = ½·(b1 + b2)·φ(b1, b2),
+///   ∂d/∂ε2 = ½·(b1 + b2 + b3)·φ(b1 + b2, b3):
+/// two logarithms a level, no power.
 template <typename S>
-Vector5<S> shapeGradient(const GaugeDerivatives<S>& gauge) {
-  return gauge.d_parameters.transpose() / gauge.gradient.norm();
+Vector5<S> shapeGradient(const Superellipsoid<S>& shape, const Vector3<S>& point,
+                         const Vector3<S>& normal) {
+  const Vector3<S> b = point.cwiseProduct(normal).cwiseAbs();
+  const auto phi = [](S x, S y) {
+    const S smaller = std::min(x, y);
+    if (!(smaller > S(0))) return S(0);  // a share of 0 (or both): s·ln s → 0
+    const S q = smaller / std::max(x, y);
+    // ln(1 + q) from the rounded u = 1 + q, as ln(u)·q/(u − 1) (u − 1 is exact): within a few
+    // ulps, as log1p, at the cost of a log.
+    const S u = S(1) + q;
+    const S ln_u = u == S(1) ? q : std::log(u) * (q / (u - S(1)));
+    return ln_u - q * std::log(q) / u;
+  };
+  const Vector3<S>& a = shape.radii();
+  const S b12 = b[0] + b[1];
+  Vector5<S> out;
+  out << -b[0] / a[0], -b[1] / a[1], -b[2] / a[2], S(0.5) * b12 * phi(b[0], b[1]),
+      S(0.5) * (b12 + b[2]) * phi(b12, b[2]);
+  return out;
 }
 
 /// True where the query q (shape frame) has several nearest points, up to the solver's
