@@ -25,11 +25,24 @@
 namespace fcl_superellipsoid {
 namespace {
 
-// N's tangent plane: fixed-capacity matrices, no allocation.
+// N's tangent plane.
 template <typename S>
-using Reduced = Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic, 0, 2, 2>;
+using Reduced = Eigen::Matrix<S, 2, 2>;
 template <typename S>
-using TangentBasis = Eigen::Matrix<S, 3, Eigen::Dynamic, 0, 3, 2>;
+using TangentBasis = Eigen::Matrix<S, 3, 2>;
+
+/// An orthonormal basis of the plane ⊥ the unit n.
+template <typename S>
+TangentBasis<S> tangentPlane(const Vector3<S>& n) {
+  int smallest = 0;
+  for (int i = 1; i < 3; ++i) {
+    if (std::abs(n[i]) < std::abs(n[smallest])) smallest = i;
+  }
+  const Vector3<S> t1 = n.cross(Vector3<S>::Unit(smallest)).normalized();
+  TangentBasis<S> out;
+  out << t1, n.cross(t1);
+  return out;
+}
 
 template <typename S>
 Eigen::Matrix<S, 3, 3> cross(const Vector3<S>& v) {
@@ -43,8 +56,15 @@ Eigen::Matrix<S, 3, 3> cross(const Vector3<S>& v) {
 /// 0), in straight loops: FullPivLU's general kernels cost three times the whole 4×4 solve. NaN
 /// where A is not finite.
 template <typename S, int N, int R>
-Eigen::Matrix<S, N, R> solveFullPivot(Eigen::Matrix<S, N, N> a, Eigen::Matrix<S, N, R> b) {
-  if (!a.allFinite()) return Eigen::Matrix<S, N, R>::Constant(std::numeric_limits<S>::quiet_NaN());
+Eigen::Matrix<S, N, R> solveFullPivot(const Eigen::Matrix<S, N, N>& a_in,
+                                      const Eigen::Matrix<S, N, R>& b_in) {
+  if (!a_in.allFinite()) {
+    return Eigen::Matrix<S, N, R>::Constant(std::numeric_limits<S>::quiet_NaN());
+  }
+  // Row-major: the eliminations and the back substitution are whole-row operations. Entries left
+  // of the diagonal are not kept up to date (never read again).
+  Eigen::Matrix<S, N, N, Eigen::RowMajor> a = a_in;
+  Eigen::Matrix<S, N, R, Eigen::RowMajor> b = b_in;
   std::array<int, N> column;
   for (int i = 0; i < N; ++i) column[i] = i;
   const S threshold = std::numeric_limits<S>::epsilon() * S(N);
@@ -53,8 +73,8 @@ Eigen::Matrix<S, N, R> solveFullPivot(Eigen::Matrix<S, N, N> a, Eigen::Matrix<S,
   for (int k = 0; k < N; ++k) {
     int row = k, col = k;
     S largest = S(0);
-    for (int j = k; j < N; ++j) {
-      for (int i = k; i < N; ++i) {
+    for (int i = k; i < N; ++i) {
+      for (int j = k; j < N; ++j) {
         if (std::abs(a(i, j)) > largest) {
           largest = std::abs(a(i, j));
           row = i;
@@ -71,19 +91,16 @@ Eigen::Matrix<S, N, R> solveFullPivot(Eigen::Matrix<S, N, N> a, Eigen::Matrix<S,
     const S inverse = S(1) / a(k, k);
     for (int i = k + 1; i < N; ++i) {
       const S f = a(i, k) * inverse;
-      for (int j = k + 1; j < N; ++j) a(i, j) -= f * a(k, j);
-      for (int c = 0; c < R; ++c) b(i, c) -= f * b(k, c);
+      a.row(i) -= f * a.row(k);
+      b.row(i) -= f * b.row(k);
     }
     rank = k + 1;
   }
-  Eigen::Matrix<S, N, R> y = Eigen::Matrix<S, N, R>::Zero();  // the permuted unknowns
+  Eigen::Matrix<S, N, R, Eigen::RowMajor> y = Eigen::Matrix<S, N, R, Eigen::RowMajor>::Zero();
   for (int i = rank - 1; i >= 0; --i) {
-    const S inverse = S(1) / a(i, i);
-    for (int c = 0; c < R; ++c) {
-      S v = b(i, c);
-      for (int j = i + 1; j < rank; ++j) v -= a(i, j) * y(j, c);
-      y(i, c) = v * inverse;
-    }
+    Eigen::Matrix<S, 1, R> v = b.row(i);
+    for (int j = i + 1; j < rank; ++j) v -= a(i, j) * y.row(j);
+    y.row(i) = v / a(i, i);
   }
   Eigen::Matrix<S, N, R> x;
   for (int i = 0; i < N; ++i) x.row(column[i]) = y.row(i);
@@ -120,22 +137,15 @@ EIGEN_DONT_INLINE void addJacobians(const Superellipsoid<S>& shape, const Vector
   // Inside, Q at a centre of curvature of N: an eigenvalue 1 + λ·(curvature) of the system in
   // N's tangent plane, K = I + λ·PᵀHP, vanishes (outside, λ > 0 and K ≥ I): the distance is
   // differentiable there, N is not. Floored, so the Jacobians stay finite (and large) there.
-  Reduced<S> k_inverse;
+  Reduced<S> k;
   TangentBasis<S> tangent;
   if (lambda < S(0)) {
-    const Eigen::HouseholderQR<Vector3<S>> qr(n);
-    const Eigen::Matrix<S, 3, 3> basis = qr.householderQ();
-    tangent = basis.rightCols(2);
-    const Reduced<S> k =
-        Reduced<S>::Identity(2, 2) + lambda * tangent.transpose() * gauge.hessian * tangent;
-    const Eigen::SelfAdjointEigenSolver<Reduced<S>> eigen(k);
-    Eigen::Matrix<S, Eigen::Dynamic, 1, 0, 2, 1> values = eigen.eigenvalues();
-    if (values.minCoeff() <= floor * std::max(S(1), values.maxCoeff())) {
-      out.differentiable = false;
-    }
-    values = values.cwiseMax(floor);
-    k_inverse = eigen.eigenvectors() * values.cwiseInverse().asDiagonal() *
-                eigen.eigenvectors().transpose();
+    tangent = tangentPlane(n);
+    k = Reduced<S>::Identity() + lambda * tangent.transpose() * gauge.hessian * tangent;
+    // K's eigenvalues, mean ± radius.
+    const S mean = (k(0, 0) + k(1, 1)) / S(2);
+    const S radius = std::hypot((k(0, 0) - k(1, 1)) / S(2), k(0, 1));
+    if (mean - radius <= floor * std::max(S(1), mean + radius)) out.differentiable = false;
   }
   out.has_jacobians = true;
 
@@ -171,6 +181,11 @@ EIGEN_DONT_INLINE void addJacobians(const Superellipsoid<S>& shape, const Vector
       scale.asDiagonal() * solveFullPivot<S, 4, 8>(scaled, scale.asDiagonal() * rhs);
   if (!solution.allFinite() && lambda < S(0)) {
     // Singular (Q at a centre of curvature): the floored tangent-plane inverse instead.
+    Eigen::SelfAdjointEigenSolver<Reduced<S>> eigen;
+    eigen.computeDirect(k);
+    const Reduced<S> k_inverse = eigen.eigenvectors() *
+                                 eigen.eigenvalues().cwiseMax(floor).cwiseInverse().asDiagonal() *
+                                 eigen.eigenvectors().transpose();
     const Eigen::Matrix<S, 3, 3> projector = tangent * k_inverse * tangent.transpose();
     const Eigen::Matrix<S, 1, 5> beta = -gauge.d_parameters / g;  // n·δN per δθ
     solution.template topLeftCorner<3, 3>() = projector;
