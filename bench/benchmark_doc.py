@@ -241,20 +241,27 @@ def micro_table(path):
         doc = json.load(f)
     times = OrderedDict()
     classes = []
+    alone = OrderedDict()  # benchmarks without a shape class ("NearSurfaceNewShape")
     for b in doc["benchmarks"]:
         if b.get("run_type", "iteration") != "iteration":
             continue
         # "Exact/1e-12/round", "BatchSimd/AVX3/cloth-band": the shape class is the last part.
         method, _, shape_class = b["name"].rpartition("/")
+        scale = {"ns": 1, "us": 1e3, "ms": 1e6}[b.get("time_unit", "ns")]
+        if not method:
+            alone[shape_class] = b["real_time"] * scale
+            continue
         if shape_class not in classes:
             classes.append(shape_class)
-        scale = {"ns": 1, "us": 1e3, "ms": 1e6}[b.get("time_unit", "ns")]
         per = 1024 if method.startswith("Batch") else 1  # batched benchmarks run 1,024 vertices
         times.setdefault(method, {})[shape_class] = b["real_time"] * scale / per
     out = ["| benchmark (ns per query or per vertex) | " + " | ".join(classes) + " |",
            "|---" * (1 + len(classes)) + "|"]
     for method, by_class in times.items():
         out.append(f"| {method} | " + " | ".join(num(by_class.get(c), "{:.0f}") for c in classes) + " |")
+    if alone:
+        out += ["", "| benchmark | ns per query |", "|---|---|"]
+        out += [f"| {name} | {num(t, '{:.0f}')} |" for name, t in alone.items()]
     return "\n".join(out)
 
 

@@ -175,10 +175,13 @@ def plot_pairs(csv_path, path):
                                label=f"{method}, {'separated' if separated else 'overlapping'}")
         loglog(ax, "time per query [µs]", "max error × size", kind)
         lo, hi = ax.get_xlim()
-        if hi / lo > 10:  # a decade's ticks are labelled; within one, the minor ticks are
+        if hi / lo > 10:  # a decade's ticks are labelled
             ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
-        else:
-            ax.xaxis.set_minor_formatter(matplotlib.ticker.FormatStrFormatter("%.2g"))
+        else:  # within one: four evenly spaced ticks, with the digits their spacing needs
+            digits = max(2, math.ceil(math.log10(4 * hi / (hi - lo))) + 1)
+            ax.xaxis.set_major_locator(matplotlib.ticker.MaxNLocator(4))
+            ax.xaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter(f"%.{digits}g"))
+            ax.xaxis.set_minor_locator(matplotlib.ticker.NullLocator())
         ax.legend(fontsize=6)
     for ax in list(axes.flat)[len(kinds):]:
         ax.axis("off")
