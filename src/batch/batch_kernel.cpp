@@ -918,12 +918,13 @@ void ShapeGradientLanes(const NestedNorm<T>& primal, const T* const point[3],
   const V zero = hn::Zero(d), one = hn::Set(d, 1), half = hn::Set(d, T(0.5));
   const V s0 = hn::Set(d, primal.scale[0]), s1 = hn::Set(d, primal.scale[1]);
   const V s2 = hn::Set(d, primal.scale[2]);
-  // φ(x, y) = ln(1 + q) − q·ln q/(1 + q), q = min(x, y)/max(x, y); 0 where min(x, y) = 0.
+  // φ(x, y) = ln(1 + q) − q·ln q/(1 + q), q = min(x, y)/max(x, y); 0 where q is (also where it
+  // rounds to 0).
   auto phi = [&](V x, V y) {
-    const V smaller = hn::Min(x, y), larger = hn::Max(x, y);
-    const auto positive = hn::Gt(smaller, zero);
-    const V q =
-        hn::Div(hn::IfThenElse(positive, smaller, one), hn::IfThenElse(positive, larger, one));
+    const V larger = hn::Max(x, y);
+    const V q_raw = hn::Div(hn::Min(x, y), hn::IfThenElse(hn::Gt(larger, zero), larger, one));
+    const auto positive = hn::Gt(q_raw, zero);
+    const V q = hn::IfThenElse(positive, q_raw, one);
     const V value = hn::Sub(hn::Log1p(d, q), hn::Div(hn::Mul(q, hn::Log(d, q)), hn::Add(one, q)));
     return hn::IfThenElseZero(positive, value);
   };

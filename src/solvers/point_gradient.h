@@ -41,9 +41,9 @@ Vector5<S> shapeGradient(const Superellipsoid<S>& shape, const Vector3<S>& point
                          const Vector3<S>& normal) {
   const Vector3<S> b = point.cwiseProduct(normal).cwiseAbs();
   const auto phi = [](S x, S y) {
-    const S smaller = std::min(x, y);
-    if (!(smaller > S(0))) return S(0);  // a share of 0 (or both): s·ln s → 0
-    const S q = smaller / std::max(x, y);
+    // A share of 0 (or both), also one whose quotient q rounds to 0: s·ln s → 0.
+    const S q = std::max(x, y) > S(0) ? std::min(x, y) / std::max(x, y) : S(0);
+    if (!(q > S(0))) return S(0);
     // ln(1 + q) from the rounded u = 1 + q, as ln(u)·q/(u − 1) (u − 1 is exact): within a few
     // ulps, as log1p, at the cost of a log.
     const S u = S(1) + q;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "fcl_superellipsoid/batch_distance.h"
 #include "fcl_superellipsoid/point_derivatives.h"
 #include "polished_reference.h"
 #include "test_helpers.h"
@@ -362,6 +363,27 @@ void expectFiniteEverywhere() {
 }
 
 TEST(PointDerivatives, FiniteEverywhereInFloat) { expectFiniteEverywhere<float>(); }
+
+// A share of a level below the format's range (docs/hardening.md → "Findings", 32): on a large
+// box-like shape in float, the nearest point's normal has a subnormal component, so one level's
+// share over the other's rounds to 0 while the share itself is not 0; its s·ln s is 0, not NaN.
+TEST(PointDerivatives, ShareBelowTheFormatsRangeInFloat) {
+  const Superellipsoid<float> shape(1e6f, 9e5f, 8e5f, 0.1f, 0.3f);
+  const Vector3<float> q(304871.5f, -132820.875f, -0.125f);
+  for (const DerivativeOrder order : {DerivativeOrder::kGradient, DerivativeOrder::kJacobians}) {
+    const auto r = pointDistanceDerivatives(shape, q, order);
+    EXPECT_TRUE(r.d_shape.allFinite()) << r.d_shape.transpose();
+  }
+  Matrix3X<float> points(3, 1);
+  points.col(0) = q;
+  for (const bool vectorize : {false, true}) {
+    BatchOptions<float> options;
+    options.vectorize = vectorize;
+    BatchDerivativesResult<float> rows;
+    batchDistanceDerivatives(shape, fcl::Transform3f::Identity(), points, rows, options);
+    EXPECT_TRUE(rows.d_shape.allFinite()) << "vectorize " << vectorize << ": " << rows.d_shape;
+  }
+}
 TEST(PointDerivatives, FiniteEverywhereInDouble) { expectFiniteEverywhere<double>(); }
 
 }  // namespace
