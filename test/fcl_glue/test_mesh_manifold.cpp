@@ -491,5 +491,52 @@ TEST(MeshRegionsOthers, ApartNothingAndOtherGeometriesTheirOneRegion) {
   EXPECT_TRUE(contactManifolds(shape, X, sphere, near).empty());
 }
 
+// Finding 33 (docs/hardening.md → "Findings"; open): a closed triangle mesh with a vertex inside a
+// box-like shape, met as a surface (MeshContacts::kRegions), where collide reported no contact.
+// The configuration fuzz_fcl found, in float and in double: the shape (1, 0.9, 0.8; 0.02, 1) and
+// the 12-vertex tessellation of (0.5, 1, 0.2; 1, 1) in an OBB tree; vertex 6 lies inside (by the
+// long-double reference gauge), so the triangles around it overlap the shape. FCL's own
+// signed-distance fallback, which calls collide after a negative distance, then read a contact
+// of an empty result.
+template <typename S>
+void expectTheMeshWithAVertexInsideCollides() {
+  auto shape = std::make_shared<Superellipsoid<S>>(S(1), S(0.9), S(0.8), S(0.02), S(1));
+  shape->setMeshContacts(MeshContacts::kRegions);
+  const auto mesh = tessellate(Superellipsoid<S>(S(0.5), S(1), S(0.2), S(1), S(1)), 12);
+  const auto model = makeBVHModel<fcl::OBB<S>>(mesh);
+  auto pose = [](std::initializer_list<double> rows) {
+    fcl::Transform3<S> X = fcl::Transform3<S>::Identity();
+    auto v = rows.begin();
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 4; ++c) X.matrix()(r, c) = S(*v++);
+    }
+    return X;
+  };
+  const fcl::Transform3<S> X_WS =
+      pose({0.896780908, -0.425747961, 0.120510146, 0.41568625, 0.433593422, 0.791265249,
+            -0.431156725, 0.353186131, 0.0882086009, 0.438905507, 0.894193053, 0.41568625});
+  const fcl::Transform3<S> X_WM =
+      pose({-0.471538663, 0.35694164, 0.806376934, 0.153408229, 0.80639261, 0.5446226, 0.230471402,
+            1.70643377, -0.356906265, 0.75893271, -0.544645786, 0.530055463});
+  int inside = 0;
+  for (const auto& v : mesh.vertices) {
+    const Vector3<S> q = X_WS.inverse(Eigen::Isometry) * (X_WM * v);
+    inside += referenceGauge(*shape, q) < 0.99L;
+  }
+  ASSERT_GE(inside, 1) << "the construction lost its inside vertex";
+  const fcl::CollisionObject<S> o_mesh(model, X_WM), o_shape(shape, X_WS);
+  fcl::CollisionRequest<S> request(1, true);
+  fcl::CollisionResult<S> result;
+  fcl_superellipsoid::collide(&o_mesh, &o_shape, request, result);
+  EXPECT_TRUE(result.isCollision()) << inside << " vertices inside";
+}
+
+TEST(MeshRegions, DISABLED_AMeshWithAVertexInsideCollidesInFloat) {
+  expectTheMeshWithAVertexInsideCollides<float>();
+}
+TEST(MeshRegions, DISABLED_AMeshWithAVertexInsideCollidesInDouble) {
+  expectTheMeshWithAVertexInsideCollides<double>();
+}
+
 }  // namespace
 }  // namespace fcl_superellipsoid
