@@ -53,8 +53,8 @@ Eigen::Matrix<S, 3, 3> cross(const Vector3<S>& v) {
 
 /// A·X = B by Gaussian elimination with full pivoting, as Eigen's FullPivLU solves it (a pivot at
 /// most N·ε_machine times the first, largest one counts as 0, and the unknowns past the rank are
-/// 0), in straight loops: FullPivLU's general kernels cost three times the whole 4×4 solve. NaN
-/// where A is not finite.
+/// 0), in straight loops, without FullPivLU's general (dynamic-size) kernels. NaN where A is not
+/// finite.
 template <typename S, int N, int R>
 Eigen::Matrix<S, N, R> solveFullPivot(const Eigen::Matrix<S, N, N>& a_in,
                                       const Eigen::Matrix<S, N, R>& b_in) {
