@@ -107,8 +107,11 @@ ContactManifold<S> contactManifold(const Superellipsoid<S>& shape, const fcl::Tr
 ///   `options.merge_angle` of its own. A region keeps its deepest triangle's normal and
 ///   distance; its polygon is the convex hull of the shape's cap clipped by each of its
 ///   triangles, on that triangle's contact plane, and its points are reduced from it as one
-///   region's are (docs/math.md → "A mesh's regions"). A point cloud is refused (it has no
-///   surface).
+///   region's are. A vertex or ridge edge of the mesh within the tolerance that no face's
+///   region holds (at least as deep less the tolerance, and overlapping if it does) is a region
+///   of its own along the shape's normal at its deepest point: a vertex one place, a ridge its
+///   deepest place and the ends of its part within the tolerance (docs/math.md → "A mesh's
+///   regions"). A point cloud is refused (it has no surface).
 /// - Every other geometry contactManifold answers: its region, if any.
 template <typename S>
 std::vector<ContactManifold<S>> contactManifolds(const Superellipsoid<S>& shape,

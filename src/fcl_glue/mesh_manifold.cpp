@@ -11,6 +11,8 @@
 #include "fcl_glue/bvh_node.h"
 #include "fcl_glue/pair_kinds.h"
 #include "narrowphase/contact_region.h"
+#include "narrowphase/mesh_facets.h"
+#include "narrowphase/mesh_features.h"
 #include "narrowphase/polytope_pair.h"
 #include "narrowphase/region_bodies.h"
 
@@ -58,47 +60,6 @@ std::vector<int> trianglesNear(const fcl::BVHModel<BV>& model, const Vector3<typ
   }
   std::sort(found.begin(), found.end());
   return found;
-}
-
-/// A triangle near the shape, in the world: its corners' vertex indices and points, and its
-/// unit normal on the shape's side (towards the shape's centre).
-template <typename S>
-struct Facet {
-  int index;
-  std::array<int, 3> corner;
-  std::array<Vector3<S>, 3> p;
-  Vector3<S> normal;
-};
-
-/// Barycentric coordinates of x (on or off the facet's plane) in the facet.
-template <typename S>
-Vector3<S> barycentric(const Facet<S>& f, const Vector3<S>& x) {
-  const Vector3<S> area = (f.p[1] - f.p[0]).cross(f.p[2] - f.p[0]);
-  const S twice = area.dot(f.normal);
-  Vector3<S> l;
-  for (int k = 0; k < 3; ++k) {
-    const Vector3<S>& b = f.p[(k + 1) % 3];
-    const Vector3<S>& c = f.p[(k + 2) % 3];
-    l[k] = (c - b).cross(x - b).dot(f.normal) / twice;
-  }
-  return l;
-}
-
-/// The facets' edges, (smaller vertex, larger vertex, facet), sorted: each edge's facets.
-using EdgeOfFacet = std::array<int, 3>;
-
-template <typename S>
-std::vector<EdgeOfFacet> edgesOf(const std::vector<Facet<S>>& facets) {
-  std::vector<EdgeOfFacet> edges;
-  edges.reserve(3 * facets.size());
-  for (std::size_t i = 0; i < facets.size(); ++i) {
-    for (int k = 0; k < 3; ++k) {
-      const int a = facets[i].corner[k], b = facets[i].corner[(k + 1) % 3];
-      edges.push_back({std::min(a, b), std::max(a, b), int(i)});
-    }
-  }
-  std::sort(edges.begin(), edges.end());
-  return edges;
 }
 
 /// Whether the facet's face holds the shape's contact at its normal, the shape overlapping its
@@ -226,6 +187,7 @@ std::optional<std::vector<ContactManifold<S>>> meshManifolds(const Pair<S>& pair
       }
     }
     const Matrix3<S> R_WS = X_WS.linear();
+    std::vector<FaceCover<S>> cover(facets.size());
     for (const std::vector<std::size_t>& group : groups) {
       const Facet<S>& first = facets[group.front()];
       PairHit<S> hit;
@@ -248,7 +210,14 @@ std::optional<std::vector<ContactManifold<S>>> meshManifolds(const Pair<S>& pair
       }
       ContactManifold<S> region =
           facetsRegion(*shape_body, pieces, hit, hit_on_facets, R_WS, tolerance, size, options);
-      if (!region.points.empty()) regions.emplace_back(std::move(region), first.index);
+      if (region.points.empty()) continue;
+      for (const std::size_t i : group) cover[i] = {true, region.distance, region.normal};
+      regions.emplace_back(std::move(region), first.index);
+    }
+    // The vertices and ridges poking into the shape where no face holds it.
+    for (FeatureRegion<S>& f :
+         featureRegions(shape, X_WS, *shape_body, facets, edges, cover, tolerance, options)) {
+      regions.emplace_back(std::move(f.region), f.triangle);
     }
   });
   if (!handled) return std::nullopt;

@@ -2,11 +2,12 @@
 #define FCL_SUPERELLIPSOID_SRC_FCL_GLUE_MESH_MANIFOLD_H
 
 // Internal: the contact regions of the superellipsoid and a triangle mesh (fcl::BVHModel<BV>,
-// FCL's eight BV types) as a surface: each triangle near the shape is a pair of its own (the
-// shape and an fcl::TriangleP, narrowphase/polytope_pair.h) with its own region
-// (narrowphase/contact_region.h), and the triangles' regions are merged by normal
-// (narrowphase/region_merge.h). The triangles are found through the model's own BVH, the shape
-// posed in the model's frame and bounded by its box (docs/math.md → "A mesh's regions").
+// FCL's eight BV types) as a surface: each triangle near the shape meets it along its own normal,
+// as a halfspace clipped to the triangle would (narrowphase/contact_region.h), triangles facing
+// alike are merged into one region, and the vertices and ridges no face holds make regions of
+// their own (narrowphase/mesh_features.h). The triangles are found through the model's own BVH,
+// the shape posed in the model's frame and bounded by its box (docs/math.md → "A mesh's
+// regions").
 
 #include <optional>
 #include <vector>

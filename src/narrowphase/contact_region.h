@@ -38,7 +38,8 @@ class RegionBody {
   }
   /// The scale of the body (its largest radius; for a polytope, its largest coordinate).
   virtual S size() const = 0;
-  /// max{s : y + s·m in the body} for the unit m, or std::nullopt where the line misses it.
+  /// max{s : y + s·m in the body} for the unit m, or std::nullopt where the line misses it (or
+  /// is not finite).
   virtual std::optional<S> extent(const Vector3<S>& y, const Vector3<S>& m) const = 0;
   /// A halfspace (a plane acts as the one the shape is pushed out of): its cap is the whole
   /// contact plane.

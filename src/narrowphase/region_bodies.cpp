@@ -60,12 +60,14 @@ class SuperellipsoidBody final : public PosedBody<S> {
   S size() const override { return shape_.size(); }
   /// Newton on G(p + s·m) = 1 from s beyond the bounding sphere: G is convex along the line,
   /// so from the right of its largest root the iterates fall to it without overshooting; a
-  /// slope ≤ 0 there means the line's lowest G is above 1 (it misses).
+  /// slope ≤ 0 there means the line's lowest G is above 1 (it misses). A line or an iterate
+  /// that is not finite (rounding on bodies far apart in scale) misses too.
   std::optional<S> extent(const Vector3<S>& y, const Vector3<S>& m) const override {
     const Vector3<S> p = this->toLocal(y), mm = this->directionToLocal(m);
     S s = -p.dot(mm) + bound_;
     for (int it = 0; it < 200; ++it) {
       const Vector3<S> q = p + s * mm;
+      if (!q.allFinite()) return std::nullopt;
       const S g = shape_.gauge(q) - S(1);
       if (g <= S(4) * kEps<S>) return s;
       const S slope = shape_.gaugeGradient(q).dot(mm);

@@ -21,6 +21,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <initializer_list>
 #include <limits>
@@ -698,6 +699,26 @@ bool finite(const ContactManifold<S>& m) {
   return ok;
 }
 
+/// Every contact finite, with a non-negative depth.
+template <typename S>
+bool finiteContacts(const fcl::CollisionResult<S>& result) {
+  bool ok = true;
+  for (std::size_t i = 0; i < result.numContacts(); ++i) {
+    const fcl::Contact<S>& c = result.getContact(i);
+    ok = ok && c.pos.allFinite() && c.normal.allFinite() && std::isfinite(c.penetration_depth) &&
+         c.penetration_depth >= S(0);
+  }
+  return ok;
+}
+
+/// A sphere, a box, a capsule, a cylinder and a cone of size r.
+template <typename S>
+std::vector<std::shared_ptr<fcl::CollisionGeometry<S>>> partnersOfSize(S r) {
+  return {std::make_shared<fcl::Sphere<S>>(r), std::make_shared<fcl::Box<S>>(r, r / 2, r),
+          std::make_shared<fcl::Capsule<S>>(r, r), std::make_shared<fcl::Cylinder<S>>(r, r),
+          std::make_shared<fcl::Cone<S>>(r, r)};
+}
+
 // Partners from the smallest size to the largest a pair accepts (max/16), posed across the
 // shape's surface: every answer finite, with at least one place where they overlap, the first
 // as deep as the pair. (A float sphere of radius 3.7e30 around a unit shape overflowed a vertex's
@@ -712,11 +733,7 @@ TYPED_TEST(ManifoldRange, PartnersFarLargerOrSmallerThanTheShapeGiveFiniteManifo
   int checked = 0;
   for (int k = bottom; k <= top; k += (sizeof(S) == 4 ? 1 : 10)) {
     const S r = S(3) * std::pow(S(10), S(k));
-    const std::shared_ptr<fcl::CollisionGeometry<S>> partners[] = {
-        std::make_shared<fcl::Sphere<S>>(r), std::make_shared<fcl::Box<S>>(r, r / 2, r),
-        std::make_shared<fcl::Capsule<S>>(r, r), std::make_shared<fcl::Cylinder<S>>(r, r),
-        std::make_shared<fcl::Cone<S>>(r, r)};
-    for (const auto& partner : partners) {
+    for (const auto& partner : partnersOfSize(r)) {
       for (int trial = 0; trial < 4; ++trial) {
         const fcl::Transform3<S> X_WS = randomPose<S>(rng, 1);
         // The partner's centre beyond the shape's surface point along a random direction by
@@ -741,16 +758,95 @@ TYPED_TEST(ManifoldRange, PartnersFarLargerOrSmallerThanTheShapeGiveFiniteManifo
         fcl::CollisionRequest<S> request(4, true);
         fcl::CollisionResult<S> result;
         fcl::collide(&a, &b, request, result);
-        for (std::size_t i = 0; i < result.numContacts(); ++i) {
-          const fcl::Contact<S>& c = result.getContact(i);
-          EXPECT_TRUE(c.pos.allFinite() && c.normal.allFinite() &&
-                      std::isfinite(c.penetration_depth) && c.penetration_depth >= S(0));
+        EXPECT_TRUE(finiteContacts(result));
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, 100);
+}
+
+// The shape swallowed whole by a partner up to the largest size a pair accepts, anywhere inside
+// it: collide (through FCL's call with its solver, and the front end) reports the overlap with
+// finite contacts and throws nothing, and the manifold is finite. (A float sphere of radius
+// 5.7e31 around a unit shape put a point of (−inf, inf, NaN) into the shape's extent, whose
+// gauge refused it from inside collide: docs/hardening.md → "Findings", 34.)
+TYPED_TEST(ManifoldRange, AShapeSwallowedByAFarLargerPartnerCollidesFinitely) {
+  using S = TypeParam;
+  const Superellipsoid<S> shape(S(1), S(0.9), S(0.8), S(0.1), S(0.1));
+  std::mt19937 rng(34);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const int top = std::numeric_limits<S>::max_exponent10 - 2;  // below max/16
+  int checked = 0;
+  for (int k = 3; k <= top; k += (sizeof(S) == 4 ? 1 : 10)) {
+    const S r = S(5.7) * std::pow(S(10), S(k - 1));
+    for (const auto& partner : partnersOfSize(r)) {
+      for (int trial = 0; trial < 4; ++trial) {
+        const fcl::Transform3<S> X_WS = randomPose<S>(rng, 2);
+        fcl::Transform3<S> X_WO = randomPose<S>(rng, 0);
+        // Within a fifth of the partner's size from the shape (the shape is inside it), or,
+        // in the first trial, a shape's size or two away.
+        const S offset = trial == 0 ? S(2) : S(0.1) * r;
+        X_WO.translation() =
+            X_WS.translation() + offset * Vector3<S>(S(u(rng)), S(u(rng)), S(u(rng)));
+        SCOPED_TRACE(::testing::Message()
+                     << "size " << r << " node " << partner->getNodeType() << " trial " << trial);
+        const ContactManifold<S> m = contactManifold(shape, X_WS, *partner, X_WO);
+        EXPECT_TRUE(finite(m));
+        EXPECT_LT(m.distance, S(0));
+        fcl::CollisionObject<S> a(std::make_shared<Superellipsoid<S>>(shape), X_WS);
+        fcl::CollisionObject<S> b(partner, X_WO);
+        for (const bool shape_first : {true, false}) {
+          const fcl::CollisionObject<S>* o1 = shape_first ? &a : &b;
+          const fcl::CollisionObject<S>* o2 = shape_first ? &b : &a;
+          for (const bool front_end : {false, true}) {
+            fcl::CollisionRequest<S> request(4, true);
+            fcl::CollisionResult<S> result;
+            fcl::detail::GJKSolver_libccd<S> solver;
+            if (front_end) {
+              EXPECT_NO_THROW(fcl_superellipsoid::collide(o1, o2, request, result));
+            } else {
+              EXPECT_NO_THROW(fcl::collide(o1, o2, &solver, request, result));
+            }
+            EXPECT_TRUE(result.isCollision());
+            EXPECT_TRUE(finiteContacts(result));
+          }
         }
         ++checked;
       }
     }
   }
   EXPECT_GT(checked, 100);
+}
+
+// Finding 34's own configuration, to the bit (float; FCL's call with its solver, the sphere
+// first, six contacts without details).
+TEST(ManifoldRangeFloat, TheFindingsSphereAroundABoxLikeShapeCollides) {
+  const auto pose = [](const std::array<float, 12>& rows) {
+    fcl::Transform3f X = fcl::Transform3f::Identity();
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 4; ++j) X.matrix()(i, j) = rows[std::size_t(4 * i + j)];
+    }
+    return X;
+  };
+  const fcl::Transform3f X_WS =
+      pose({0x1.953a8p-4f, 0x1.cd2136p-1f, 0x1.b14d3cp-2f, 0x1.71717p-3f, 0x1.b14d3cp-2f,
+            -0x1.b1192p-2f, 0x1.9a4274p-1f, 0x1.fe2ffep+0f, 0x1.cd2136p-1f, 0x1.98b1e8p-4f,
+            -0x1.b1192p-2f, 0x1.fea6a4p-1f});
+  const fcl::Transform3f X_WO =
+      pose({-0x1.c52f6cp-1f, 0x1.d50ffcp-2f, -0x1.4fd7fp-4f, -0x1.8ebab8p+0f, 0x1.3e13b4p-4f,
+            0x1.46c7c8p-2f, 0x1.e3990ap-1f, 0x1.7ea3fep+1f, 0x1.d5d5f8p-2f, 0x1.a8c91ap-1f,
+            -0x1.45aafp-2f, 0x1.7d82fep+0f});
+  const fcl::CollisionObject<float> shape(
+      std::make_shared<Superellipsoid<float>>(1.0f, 0.9f, 0.8f, 0.1f, 0.1f), X_WS);
+  const fcl::CollisionObject<float> sphere(std::make_shared<fcl::Sphere<float>>(0x1.67589cp+105f),
+                                           X_WO);
+  fcl::detail::GJKSolver_libccd<float> solver;
+  const fcl::CollisionRequest<float> request(6, false);
+  fcl::CollisionResult<float> result;
+  EXPECT_NO_THROW(fcl::collide(&sphere, &shape, &solver, request, result));
+  EXPECT_TRUE(result.isCollision());
+  EXPECT_TRUE(finiteContacts(result));
 }
 
 // --- Refusals --------------------------------------------------------------------------------

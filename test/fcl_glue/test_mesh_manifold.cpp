@@ -11,8 +11,10 @@
 #include <fcl/geometry/shape/halfspace.h>
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -22,6 +24,7 @@
 #include "fcl_superellipsoid/contact_manifold.h"
 #include "fcl_superellipsoid/fcl_integration.h"
 #include "fcl_superellipsoid/tessellation.h"
+#include "reference_distance.h"
 #include "region_construction.h"
 #include "test_helpers.h"
 
@@ -491,13 +494,15 @@ TEST(MeshRegionsOthers, ApartNothingAndOtherGeometriesTheirOneRegion) {
   EXPECT_TRUE(contactManifolds(shape, X, sphere, near).empty());
 }
 
-// Finding 33 (docs/hardening.md → "Findings"; open): a closed triangle mesh with a vertex inside a
-// box-like shape, met as a surface (MeshContacts::kRegions), where collide reported no contact.
-// The configuration fuzz_fcl found, in float and in double: the shape (1, 0.9, 0.8; 0.02, 1) and
-// the 12-vertex tessellation of (0.5, 1, 0.2; 1, 1) in an OBB tree; vertex 6 lies inside (by the
-// long-double reference gauge), so the triangles around it overlap the shape. FCL's own
-// signed-distance fallback, which calls collide after a negative distance, then read a contact
-// of an empty result.
+// Finding 33 (docs/hardening.md → "Findings"): a closed triangle mesh with a vertex inside a
+// box-like shape, met as a surface (MeshContacts::kRegions), where collide reported no contact:
+// the face whose plane the shape was pressed against held the contact, but collide's outline (its
+// first eight directions, not refined) missed the small part of the face inside the shape. The
+// configuration fuzz_fcl found, in float and in double: the shape (1, 0.9, 0.8; 0.02, 1) and the
+// 12-vertex tessellation of (0.5, 1, 0.2; 1, 1) in an OBB tree. Collide's deepest contact is at
+// least as deep as the deepest vertex (by the long-double reference distance), and FCL's own
+// signed distance (which calls collide after a negative distance and reads its deepest contact,
+// of an empty result before) is minus that depth.
 template <typename S>
 void expectTheMeshWithAVertexInsideCollides() {
   auto shape = std::make_shared<Superellipsoid<S>>(S(1), S(0.9), S(0.8), S(0.02), S(1));
@@ -528,14 +533,87 @@ void expectTheMeshWithAVertexInsideCollides() {
   fcl::CollisionRequest<S> request(1, true);
   fcl::CollisionResult<S> result;
   fcl_superellipsoid::collide(&o_mesh, &o_shape, request, result);
-  EXPECT_TRUE(result.isCollision()) << inside << " vertices inside";
+  ASSERT_TRUE(result.isCollision()) << inside << " vertices inside";
+  const test::ReferenceDistance reference({1.0L, 0.9L, 0.8L}, 0.02L, 1.0L);
+  long double deepest = 0;
+  for (const auto& v : mesh.vertices) {
+    const Eigen::Matrix<long double, 3, 1> q =
+        (X_WS.inverse(Eigen::Isometry) * (X_WM * v)).template cast<long double>();
+    deepest = std::max(deepest, -reference.query({q.x(), q.y(), q.z()}).distance);
+  }
+  const double rounding = std::is_same<S, float>::value ? 1e-5 : 1e-12;
+  EXPECT_GE(double(result.getContact(0).penetration_depth), double(deepest) - rounding);
+  fcl::detail::GJKSolver_libccd<S> solver;
+  fcl::DistanceRequest<S> signed_request(true);
+  signed_request.enable_signed_distance = true;
+  fcl::DistanceResult<S> signed_result;
+  fcl::distance(&o_mesh, &o_shape, &solver, signed_request, signed_result);
+  EXPECT_NEAR(double(signed_result.min_distance), -double(result.getContact(0).penetration_depth),
+              rounding);
 }
 
-TEST(MeshRegions, DISABLED_AMeshWithAVertexInsideCollidesInFloat) {
+TEST(MeshRegions, AMeshWithAVertexInsideCollidesInFloat) {
   expectTheMeshWithAVertexInsideCollides<float>();
 }
-TEST(MeshRegions, DISABLED_AMeshWithAVertexInsideCollidesInDouble) {
+TEST(MeshRegions, AMeshWithAVertexInsideCollidesInDouble) {
   expectTheMeshWithAVertexInsideCollides<double>();
+}
+
+// Finding 33's second configuration (fuzz_fcl, float): a vertex of the 80-vertex tessellation of
+// the needle (0.2, 0.2, 1; 1.98, 0.65) 9.6e-4 inside the shape (1, 0.9, 0.8; 0.02, 0.3), within
+// the regions' tolerance of its surface. A face region covered the vertex, but collide's coarse
+// outline put it apart (distance ≥ 0), so it gave no contact and held the vertex from making one.
+// Collide now reports a contact at least as deep as the vertex, and FCL's signed distance is
+// minus its depth.
+TEST(MeshRegions, AVertexJustInsideUnderAFaceRegionApartCollides) {
+  using S = float;
+  auto shape = std::make_shared<Superellipsoid<S>>(1.0f, 0x1.ccccccp-1f, 0x1.99999ap-1f,
+                                                   0x1.47ae14p-6f, 0x1.333334p-2f);
+  shape->setMeshContacts(MeshContacts::kRegions);
+  const auto mesh = tessellate(Superellipsoid<S>(0.2f, 0.2f, 1.0f, 1.98f, 0.65f), 80);
+  const auto model = makeBVHModel<fcl::OBB<S>>(mesh);
+  const auto pose = [](const std::array<float, 12>& rows) {
+    fcl::Transform3<S> X = fcl::Transform3<S>::Identity();
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 4; ++j) X.matrix()(i, j) = rows[std::size_t(4 * i + j)];
+    }
+    return X;
+  };
+  const fcl::Transform3<S> X_WS =
+      pose({-0x1.c2a3p-7f, 0x1.f705c2p-1f, -0x1.7ccbap-3f, 0x1p+1f, -0x1.ea815ep-1f, -0x1.0f2c2p-4f,
+            -0x1.1da774p-2f, 0x1p+1f, -0x1.254022p-2f, 0x1.64f3bap-3f, 0x1.e25eeep-1f, 0x1p+1f});
+  const fcl::Transform3<S> X_WM =
+      pose({0x1.ec2be8p-3f, 0x1.7be62cp-1f, 0x1.40705ep-1f, 0x1.7fc5e4p+1f, 0x1.e807f8p-2f,
+            0x1.e2d018p-2f, -0x1.7be62cp-1f, 0x1.9395ccp-1f, -0x1.b0f7aep-1f, 0x1.e807f8p-2f,
+            -0x1.ec2bep-3f, 0x1.90ddccp-1f});
+  const test::ReferenceDistance reference(
+      {1.0L, (long double)0x1.ccccccp-1f, (long double)0x1.99999ap-1f}, (long double)0x1.47ae14p-6f,
+      (long double)0x1.333334p-2f);
+  long double deepest = 0;
+  for (const auto& v : mesh.vertices) {
+    const Eigen::Matrix<long double, 3, 1> q =
+        (X_WS.inverse(Eigen::Isometry) * (X_WM * v)).cast<long double>();
+    deepest = std::max(deepest, -reference.query({q.x(), q.y(), q.z()}).distance);
+  }
+  ASSERT_GT(deepest, 0) << "the construction lost its inside vertex";
+  const fcl::CollisionObject<S> o_mesh(model, X_WM), o_shape(shape, X_WS);
+  for (std::size_t room = 1; room <= 8; ++room) {
+    fcl::CollisionResult<S> result;
+    fcl::collide(&o_shape, &o_mesh, fcl::CollisionRequest<S>(room, true), result);
+    ASSERT_TRUE(result.isCollision()) << "room " << room;
+    double most = 0;
+    for (std::size_t i = 0; i < result.numContacts(); ++i) {
+      most = std::max(most, double(result.getContact(i).penetration_depth));
+    }
+    EXPECT_GE(most, double(deepest) - 1e-5);
+  }
+  fcl::detail::GJKSolver_libccd<S> solver;
+  fcl::DistanceRequest<S> request(true);
+  request.enable_signed_distance = true;
+  fcl::DistanceResult<S> result;
+  fcl::distance(&o_shape, &o_mesh, &solver, request, result);
+  EXPECT_LT(result.min_distance, 0.0f);
+  EXPECT_TRUE(result.nearest_points[0].allFinite());
 }
 
 }  // namespace
