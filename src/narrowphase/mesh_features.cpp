@@ -132,13 +132,13 @@ std::vector<FeatureRegion<S>> featureRegions(
   }
   // Whether facet i's region holds a feature whose points x lie on the facet: the region is at
   // least as deep as the feature less the tolerance, and it overlaps where the feature does (so
-  // that a vertex inside the shape always makes an overlapping region). Decided by the bound
-  // where it can be (`lowest`: the least n·x over the feature), else by the feature's signed
-  // distance (`distance`, computed only then).
-  const auto held = [&](std::size_t i, const auto& lowest, const auto& distance) {
+  // that a vertex inside the shape always makes an overlapping region). Decided by a lower bound
+  // on the feature's signed distance where it can be (`bound(n, h(n))`: at least the least n·x
+  // over the feature less h(n)), else by the signed distance (`distance`, computed only then).
+  const auto held = [&](std::size_t i, const auto& bound_of, const auto& distance) {
     const FaceCover<S>& f = cover[i];
     if (!f.covered) return false;
-    const S bound = lowest(f.normal) - height[i];  // ≤ the feature's signed distance
+    const S bound = bound_of(f.normal, height[i]);
     if (bound >= f.distance - tolerance && (f.distance < S(0) || bound >= S(0))) return true;
     const S d = distance();
     return f.distance <= d + tolerance && (f.distance < S(0) || d >= S(0));
@@ -149,53 +149,49 @@ std::vector<FeatureRegion<S>> featureRegions(
     for (const int v : facets[i].corner) corners.emplace_back(v, int(i));
   }
   std::sort(corners.begin(), corners.end());
-  const auto pointOf = [&](const std::pair<int, int>& corner) {
-    const Facet<S>& f = facets[std::size_t(corner.second)];
-    for (int k = 0; k < 3; ++k) {
-      if (f.corner[k] == corner.first) return f.p[k];
-    }
-    return f.p[0];
-  };
-  // Each vertex within the tolerance that no region holds, with its point query.
-  struct Near {
-    int vertex, facet;
-    Vector3<S> point;
-    PointDistanceResult<S> at;
-    bool least = true;  // the signed distance falls along none of its edges
-  };
-  std::vector<Near> near;
-  for (std::size_t k = 0; k < corners.size();) {
-    std::size_t end = k + 1;
-    while (end < corners.size() && corners[end].first == corners[k].first) ++end;
-    const Vector3<S> p = pointOf(corners[k]);
-    const std::size_t begin = k;
-    k = end;
-    if (apartBy(body, c, p, p, tolerance)) continue;
-    std::optional<PointDistanceResult<S>> at;
-    const auto distance = [&] {
-      if (!at) at = pointDistance(shape, X_WS, p, shape.queryOptions());
-      return at->distance;
-    };
-    const auto lowest = [&](const Vector3<S>& n) { return n.dot(p); };
-    bool is_held = false;
-    for (std::size_t j = begin; j < end && !is_held; ++j) {
-      is_held = held(std::size_t(corners[j].second), lowest, distance);
-    }
-    if (is_held || !(distance() < tolerance)) continue;
-    near.push_back(
-        {corners[begin].first, facets[std::size_t(corners[begin].second)].index, p, *at});
-  }
-  const auto nearOf = [&](int v) -> Near* {
-    auto it = std::lower_bound(near.begin(), near.end(), v,
-                               [](const Near& x, int value) { return x.vertex < value; });
-    return it != near.end() && it->vertex == v ? &*it : nullptr;
-  };
   const auto cornerPoint = [](const Facet<S>& f, int v) {
     for (int k = 0; k < 3; ++k) {
       if (f.corner[k] == v) return f.p[k];
     }
     return f.p[0];
   };
+  // Each vertex once: its facets corners[begin, end), its point, its point query once asked
+  // (shared by its edges), and whether it is a feature (within the tolerance, held by no region,
+  // the signed distance falling along none of its edges).
+  struct Vertex {
+    int id;
+    std::size_t begin, end;
+    Vector3<S> point;
+    std::optional<PointDistanceResult<S>> at;
+    bool feature = false;
+  };
+  std::vector<Vertex> vertices;
+  for (std::size_t k = 0; k < corners.size();) {
+    std::size_t end = k + 1;
+    while (end < corners.size() && corners[end].first == corners[k].first) ++end;
+    vertices.push_back({corners[k].first, k, end,
+                        cornerPoint(facets[std::size_t(corners[k].second)], corners[k].first),
+                        std::nullopt, false});
+    k = end;
+  }
+  const auto queried = [&](Vertex& v) -> const PointDistanceResult<S>& {
+    if (!v.at) v.at = pointDistance(shape, X_WS, v.point, shape.queryOptions());
+    return *v.at;
+  };
+  const auto vertexOf = [&](int id) -> Vertex& {
+    return *std::lower_bound(vertices.begin(), vertices.end(), id,
+                             [](const Vertex& x, int value) { return x.id < value; });
+  };
+  for (Vertex& v : vertices) {
+    if (apartBy(body, c, v.point, v.point, tolerance)) continue;
+    const auto distance = [&] { return queried(v).distance; };
+    const auto bound = [&](const Vector3<S>& n, S h) { return n.dot(v.point) - h; };
+    bool is_held = false;
+    for (std::size_t j = v.begin; j < v.end && !is_held; ++j) {
+      is_held = held(std::size_t(corners[j].second), bound, distance);
+    }
+    v.feature = !is_held && distance() < tolerance;
+  }
   for (std::size_t first = 0; first < edges.size();) {
     std::size_t last = first + 1;
     while (last < edges.size() && edges[last][0] == edges[first][0] &&
@@ -204,18 +200,19 @@ std::vector<FeatureRegion<S>> featureRegions(
     }
     const std::size_t begin = first;
     first = last;
-    const int a = edges[begin][0], b = edges[begin][1];
-    const Facet<S>& f0 = facets[std::size_t(edges[begin][2])];
-    const Vector3<S> pa = cornerPoint(f0, a), pb = cornerPoint(f0, b);
-    // A vertex's signed distance falls along this edge: it is not the least.
-    if (Near* na = nearOf(a); na != nullptr && na->at.normal.dot(pb - pa) < S(0)) {
-      na->least = false;
-    }
-    if (Near* nb = nearOf(b); nb != nullptr && nb->at.normal.dot(pa - pb) < S(0)) {
-      nb->least = false;
-    }
+    Vertex& va = vertexOf(edges[begin][0]);
+    Vertex& vb = vertexOf(edges[begin][1]);
+    const Vector3<S> pa = va.point, pb = vb.point;
+    // The signed distance is convex along the edge: it falls from an end where its derivative
+    // n·e (n the normal at the end's nearest point) is negative, and its least is inside the
+    // edge only where it falls from both ends.
+    const bool falls_from_a = va.at && va.at->normal.dot(pb - pa) < S(0);
+    const bool falls_from_b = vb.at && vb.at->normal.dot(pa - pb) < S(0);
+    if (falls_from_a) va.feature = false;
+    if (falls_from_b) vb.feature = false;
     // A ridge: the mesh's boundary, or one of its triangles bends away from another's side
     // towards the shape (a flat continuation or a valley is no ridge).
+    const int a = va.id, b = vb.id;
     bool ridge = last - begin == 1;
     for (std::size_t i = begin; i < last && !ridge; ++i) {
       for (std::size_t j = begin; j < last && !ridge; ++j) {
@@ -230,21 +227,37 @@ std::vector<FeatureRegion<S>> featureRegions(
       }
     }
     if (!ridge || apartBy(body, c, pa, pb, tolerance)) continue;
+    // The ends' derivatives along the edge, f'(0) = n_a·e < 0 < f'(1) = n_b·e (the queries
+    // shared with the other edges of each end); the tangents at the ends bound f from below,
+    // and where they cross is a bound on its least.
+    const Vector3<S> e = pb - pa;
+    const S slope_a = queried(va).normal.dot(e), slope_b = queried(vb).normal.dot(e);
+    if (!(slope_a < S(0)) || !(slope_b > S(0))) continue;
+    const S fa = va.at->distance, fb = vb.at->distance;
+    const S floor =
+        fa + slope_a * std::clamp((fb - slope_b - fa) / (slope_a - slope_b), S(0), S(1));
+    if (floor >= tolerance) continue;
     std::optional<SegmentMinimum<S>> m;
     const auto distance = [&] {
       if (!m) m = nearestOnSegment(shape, X_WS, pa, pb);
       return m->at.distance;
     };
-    const auto lowest = [&](const Vector3<S>& n) { return std::min(n.dot(pa), n.dot(pb)); };
+    const auto bound = [&](const Vector3<S>& n, S h) {
+      return std::max(floor, std::min(n.dot(pa), n.dot(pb)) - h);
+    };
     bool is_held = false;
     for (std::size_t i = begin; i < last && !is_held; ++i) {
-      is_held = held(std::size_t(edges[i][2]), lowest, distance);
+      is_held = held(std::size_t(edges[i][2]), bound, distance);
     }
     if (is_held || !(distance() < tolerance) || !(m->t > slack && m->t < S(1) - slack)) continue;
-    out.push_back({edgeRegion(body, *m, pa, pb, tolerance, options), f0.index});
+    out.push_back({edgeRegion(body, *m, pa, pb, tolerance, options),
+                   facets[std::size_t(edges[begin][2])].index});
   }
-  for (const Near& v : near) {
-    if (v.least) out.push_back({pointRegion(v.at, v.point, tolerance), v.facet});
+  for (const Vertex& v : vertices) {
+    if (v.feature) {
+      out.push_back({pointRegion(*v.at, v.point, tolerance),
+                     facets[std::size_t(corners[v.begin].second)].index});
+    }
   }
   return out;
 }
