@@ -42,6 +42,7 @@
 #include <cmath>
 #include <optional>
 
+#include "common/tangent_basis.h"
 #include "fcl_superellipsoid/superellipsoid.h"
 #include "narrowphase/sphere_newton.h"
 #include "shape/nested_norm.h"
@@ -87,7 +88,8 @@ S rollingRadius(const fcl::Ellipsoid<S>& shape) {
 template <typename S>
 bool rollingCertified(const Probe<S>& p, S rolling_radius, S tolerance) {
   if (!(p.f >= S(0) && p.f <= rolling_radius)) return false;
-  const auto [t1, t2] = tangents(p.v);
+  const std::array<Vector3<S>, 2> basis = tangentBasis(p.v);
+  const Vector3<S>&t1 = basis[0], &t2 = basis[1];
   const Vector3<S> g = p.a - p.b;
   return hypot2(t1.dot(g), t2.dot(g)) <= tolerance;
 }

@@ -6,6 +6,7 @@
 #include <limits>
 #include <vector>
 
+#include "common/tangent_basis.h"
 #include "narrowphase/rolling_certificate.h"
 #include "narrowphase/sphere_newton.h"
 
@@ -43,7 +44,8 @@ void consistentWitnesses(const SupportMap<S>& A, const SupportMap<S>& B, const P
   const SupportEval<S> ea = A.evaluate(p.v, true), eb = B.evaluate(Vector3<S>(-p.v), true);
   on_a = ea.point;
   on_b = eb.point;
-  const auto [t1, t2] = tangents(p.v);
+  const std::array<Vector3<S>, 2> basis = tangentBasis(p.v);
+  const Vector3<S>&t1 = basis[0], &t2 = basis[1];
   const Vector3<S> gap = ea.point - eb.point;
   const Eigen::Matrix<S, 3, 3> K3 = ea.hessian + eb.hessian;
   const S k11 = t1.dot(K3 * t1), k22 = t2.dot(K3 * t2), k12 = t1.dot(K3 * t2);

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 
+#include "common/tangent_basis.h"
 #include "narrowphase/support_map.h"
 #include "shape/symmetric2.h"
 
@@ -48,14 +49,6 @@ Probe<S> probe(const SupportMap<S>& A, const SupportMap<S>& B, const Vector3<S>&
   return {ea.value + eb.value, v, ea.point, eb.point, ea.hessian + eb.hessian};
 }
 
-/// Two unit vectors that complete v to an orthonormal frame.
-template <typename S>
-std::array<Vector3<S>, 2> tangents(const Vector3<S>& v) {
-  const Vector3<S> helper = std::abs(v[0]) < S(0.6) ? Vector3<S>::UnitX() : Vector3<S>::UnitY();
-  const Vector3<S> t1 = v.cross(helper).normalized();
-  return {t1, v.cross(t1)};
-}
-
 /// Newton's method for F on the unit sphere from v0, with a backtracking line search and the
 /// Riemannian Hessian shifted to positive definite where F is not locally convex; at most
 /// `max_iterations` steps, and none after an iterate p (a Probe) with stop(p).
@@ -67,7 +60,8 @@ Probe<S> localMinimum(
   Probe<S> p = probe(A, B, Vector3<S>(v0.normalized()));
   const S eps = std::numeric_limits<S>::epsilon();
   for (int it = 0; it < max_iterations; ++it) {
-    const auto [t1, t2] = tangents(p.v);
+    const std::array<Vector3<S>, 2> basis = tangentBasis(p.v);
+    const Vector3<S>&t1 = basis[0], &t2 = basis[1];
     // Riemannian gradient and Hessian: P·∇F and P·∇²F·P − (v·∇F)·P, with v·∇F = F (F is
     // 1-homogeneous).
     const Vector3<S> g = p.a - p.b;

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 
+#include "common/tangent_basis.h"
 #include "shape/symmetric2.h"
 
 namespace fcl_superellipsoid {
@@ -118,8 +119,8 @@ TangentBlock<S> convexifiedTangentBlock(S b11, S b12, S b22, S scale) {
           true, lowest > S(0)};
 }
 
-/// The tangent basis t1 = n × helper takes helper = x̂ where |n_x| < this, else ŷ.
-constexpr double kTangentHelperSwitch = 0.6;
+/// The tangent basis's helper switch (common/tangent_basis.h), for the SIMD lanes' copy of it.
+using detail::kTangentHelperSwitch;
 
 /// Inside, a query with G(Q) below this is "deep": the centre's candidates may be nearer.
 constexpr double kDeepGauge = 0.5;

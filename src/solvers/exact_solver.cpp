@@ -47,6 +47,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "common/tangent_basis.h"
 #include "shape/nested_norm.h"
 #include "shape/shape_caches.h"
 #include "solvers/ball_certificate.h"
@@ -572,21 +573,12 @@ class ExactSolver {
   /// step is the one that converges (the replaced one creeps, by about eigenvalue/(10 % of
   /// scale) per iteration), so a positive one comes back in `full_step_first`: the caller tries
   /// the plain step first.
-  /// An orthonormal basis (t1, t2) of the plane ⊥ the unit n (the helper axis switches at
-  /// exact_rules::kTangentHelperSwitch so that n × helper never degenerates).
-  static std::pair<Vector3<S>, Vector3<S>> tangentBasis(const Vector3<S>& n) {
-    const Vector3<S> helper =
-        std::abs(n[0]) < S(rules::kTangentHelperSwitch) ? Vector3<S>::UnitX() : Vector3<S>::UnitY();
-    const Vector3<S> t1 = n.cross(helper).normalized();
-    return {t1, n.cross(t1)};
-  }
-
   /// The restoring step (exact_rules::kStepTrials): the Newton step of `system` at the normal n
   /// along the tangent block's stiffer eigenvector only, back to a curved valley's floor without
   /// moving along the valley. Not finite where that eigenvalue is not positive.
   static Vector3<S> restoringStep(const NewtonSystem& system, const Vector3<S>& n) {
-    const std::pair<Vector3<S>, Vector3<S>> basis = tangentBasis(n);
-    const Vector3<S>&t1 = basis.first, &t2 = basis.second;
+    const std::array<Vector3<S>, 2> basis = tangentBasis(n);
+    const Vector3<S>&t1 = basis[0], &t2 = basis[1];
     const Eigen::Matrix<S, 3, 3>& a = system.matrix;
     const S b11 = t1.dot(a * t1), b22 = t2.dot(a * t2), b12 = t1.dot(a * t2);
     const Eigenvalues2<S> e = eigenvalues2(b11, b12, b22);
@@ -597,8 +589,8 @@ class ExactSolver {
   }
 
   static TangentSteps tangentSteps(const NewtonSystem& system, const Vector3<S>& n) {
-    const std::pair<Vector3<S>, Vector3<S>> basis = tangentBasis(n);
-    const Vector3<S>&t1 = basis.first, &t2 = basis.second;
+    const std::array<Vector3<S>, 2> basis = tangentBasis(n);
+    const Vector3<S>&t1 = basis[0], &t2 = basis[1];
     const Eigen::Matrix<S, 3, 3>& a = system.matrix;
     const S b11 = t1.dot(a * t1), b22 = t2.dot(a * t2), b12 = t1.dot(a * t2);
     const S c1 = t1.dot(system.residual), c2 = t2.dot(system.residual);
@@ -663,8 +655,8 @@ class ExactSolver {
     const Vector3<S>& n = c.normal;
     if (!inside_ && !std::is_same<S, double>::value) return dual_.evaluate(n, true);
     const S g = c.gradient.norm();
-    const std::pair<Vector3<S>, Vector3<S>> basis = tangentBasis(n);
-    const Vector3<S>&t1 = basis.first, &t2 = basis.second;
+    const std::array<Vector3<S>, 2> basis = tangentBasis(n);
+    const Vector3<S>&t1 = basis[0], &t2 = basis[1];
     const S w11 = t1.dot(c.hessian * t1) / g, w22 = t2.dot(c.hessian * t2) / g;
     const S w12 = t1.dot(c.hessian * t2) / g;
     const S det = w11 * w22 - w12 * w12;

@@ -17,6 +17,7 @@
 
 #include "common/coordinate_range.h"
 #include "common/invalid_argument.h"
+#include "common/tangent_basis.h"
 #include "shape/gauge_derivatives.h"
 #include "solvers/exact_rules.h"
 #include "solvers/point_gradient.h"
@@ -31,16 +32,12 @@ using Reduced = Eigen::Matrix<S, 2, 2>;
 template <typename S>
 using TangentBasis = Eigen::Matrix<S, 3, 2>;
 
-/// An orthonormal basis of the plane ⊥ the unit n.
+/// An orthonormal basis of the plane ⊥ the unit n, as a 3 × 2 matrix's columns.
 template <typename S>
 TangentBasis<S> tangentPlane(const Vector3<S>& n) {
-  int smallest = 0;
-  for (int i = 1; i < 3; ++i) {
-    if (std::abs(n[i]) < std::abs(n[smallest])) smallest = i;
-  }
-  const Vector3<S> t1 = n.cross(Vector3<S>::Unit(smallest)).normalized();
+  const std::array<Vector3<S>, 2> basis = detail::tangentBasis(n);
   TangentBasis<S> out;
-  out << t1, n.cross(t1);
+  out << basis[0], basis[1];
   return out;
 }
 
