@@ -1,6 +1,7 @@
 #include "contact/rigid_contact.h"
 
 #include <fcl_superellipsoid/batch_distance.h>
+#include <fcl_superellipsoid/contact_manifold.h>
 #include <fcl_superellipsoid/point_distance.h>
 #include <fcl_superellipsoid/tessellation.h>
 #include <tbb/parallel_for.h>
@@ -11,7 +12,9 @@
 #include <cmath>
 #include <limits>
 #include <thread>
+#include <unordered_map>
 
+#include "contact/persistent_places.h"
 #include "contact/rigid_mesh_contact.h"
 
 namespace fse_sim {
@@ -19,15 +22,6 @@ namespace fse_sim {
 namespace fse = fcl_superellipsoid;
 
 namespace {
-
-/// The exact model's manifold (RigidContactFinder::Impl::manifoldPoints): support points in
-/// directions tilted from the contact normal, four by kManifoldTilt (toward a box-like face's
-/// edges: on a round shape, points a quarter radian round from the contact) and four between
-/// them by kManifoldCornerTilt (toward its corners: on a face as flat as ε = 0.1's, a larger
-/// tilt lands on the rounded edge above the face's corner, which the face's corner then
-/// undercuts).
-constexpr double kManifoldTilt = 0.25;
-constexpr double kManifoldCornerTilt = 0.02;
 
 /// Whether the bodies' bounding boxes (their frames, half-sizes the radii) come within `margin`
 /// of each other: the separating-axis test on the 15 axes of two boxes.
@@ -110,9 +104,12 @@ struct RigidContactFinder::Impl {
 
   /// A unit of work whose contacts land in their own slot: a body pair, or a body and the bowl.
   struct Job {
-    int a, b;       // b = −1: the bowl
-    double margin;  // tolerance + the travel of both
+    int a, b;                      // b = −1: the bowl
+    double margin;                 // tolerance + the travel of both
+    PairPlaces* places = nullptr;  // the exact model's, for body pairs
   };
+  /// The exact model's persistent places of each body pair in reach, by pair (i·n + j).
+  std::unordered_map<long, PairPlaces> places;
   std::vector<Job> jobs;
   std::vector<std::vector<RigidContact>> slots;
 
@@ -127,11 +124,11 @@ struct RigidContactFinder::Impl {
         const double reach = bodies[i].bounding_radius + bodies[j].bounding_radius + margin;
         if ((bodies[i].x - bodies[j].x).squaredNorm() <= reach * reach &&
             boxesOverlap(bodies[i], bodies[j], margin)) {
-          jobs.push_back({i, j, margin});
+          jobs.push_back({i, j, margin, nullptr});
         }
       }
       if (bowl != nullptr && !bodies[i].fixed()) {
-        jobs.push_back({i, -1, tolerance + travel[std::size_t(i)]});
+        jobs.push_back({i, -1, tolerance + travel[std::size_t(i)], nullptr});
       }
     }
   }
@@ -173,8 +170,25 @@ struct RigidContactFinder::Impl {
     }
   }
 
-  void exactPair(const std::vector<RigidBody>& bodies, int i, int j, double margin, bool manifold,
-                 std::vector<RigidContact>& out) const {
+  /// Gives each body-pair job its pair's persistent places, and forgets the places of pairs out
+  /// of reach.
+  void attachPlaces(std::size_t bodies) {
+    std::unordered_map<long, PairPlaces> kept;
+    for (Job& job : jobs) {
+      if (job.b < 0) continue;
+      const long key = long(job.a) * long(bodies) + job.b;
+      auto found = places.find(key);
+      auto& entry = kept[key];
+      if (found != places.end()) entry = std::move(found->second);
+    }
+    places = std::move(kept);
+    for (Job& job : jobs) {
+      if (job.b >= 0) job.places = &places.at(long(job.a) * long(bodies) + job.b);
+    }
+  }
+
+  void exactPair(const std::vector<RigidBody>& bodies, int i, int j, double margin,
+                 PairPlaces* kept, std::vector<RigidContact>& out) const {
     const RigidBody& a = bodies[std::size_t(i)];
     const RigidBody& b = bodies[std::size_t(j)];
     fcl::DistanceRequestd request;
@@ -219,55 +233,28 @@ struct RigidContactFinder::Impl {
     const Eigen::Vector3d on_a = a.toWorld(a.shape->supportPoint(a.q.inverse() * -n));
     const Eigen::Vector3d on_b =
         b.toWorld(b.shape->supportPoint(b.q.inverse() * n)) + (best - d) * n;
-    if (manifold) {
-      manifoldPoints(a, i, b, j, -n, margin, out);
-      manifoldPoints(b, j, a, i, n, margin, out);
-    }
+    const std::size_t before = out.size();
+    if (kept != nullptr) regionContacts(a, i, b, j, n, *kept, out);
+    const bool has_places = out.size() > before;
     out.push_back(contactAt(a, i, &b, j, d, on_a, on_b, n));
     out.back().follows_support = true;
     out.back().support_offset = best - d;
+    out.back().turning_only = has_places;
   }
 
-  /// Support points of body `from` in eight directions tilted from a centre direction (see
-  /// kManifoldTilt), against body `other`'s surface. The centre is `toward` (the
-  /// direction to the other body), or, where one of `from`'s axes lies within the tilt of it, that
-  /// axis: a box-like face then offers its edges' middles and its corners (the directions go
-  /// round from the next axis in equal steps). Round from `toward` itself, a face as flat as
-  /// ε = 0.1's would send every tilted direction to the same edge.
-  static void manifoldPoints(const RigidBody& from, int i_from, const RigidBody& other, int i_other,
-                             const Eigen::Vector3d& toward, double margin,
+  /// The pair's contact region from the library (fse::contactManifold, a as the shape, warm-
+  /// started from the pair's last one; the outline unrefined: only its reduced places are
+  /// used), whose places update the pair's persistent places (contact/persistent_places.h); a
+  /// contact for each. The patch tolerance is 1e-3 × the smaller body's size.
+  static void regionContacts(const RigidBody& a, int i, const RigidBody& b, int j,
+                             const Eigen::Vector3d& n, PairPlaces& kept,
                              std::vector<RigidContact>& out) {
-    const Eigen::Matrix3d axes = from.q.toRotationMatrix();
-    Eigen::Index k = 0;
-    (axes.transpose() * toward).cwiseAbs().maxCoeff(&k);
-    const double alignment = axes.col(k).dot(toward);
-    Eigen::Vector3d centre = toward, t1, t2;
-    if (std::abs(alignment) >= std::cos(kManifoldTilt)) {
-      centre = alignment > 0 ? Eigen::Vector3d(axes.col(k)) : Eigen::Vector3d(-axes.col(k));
-      t1 = axes.col((k + 1) % 3);
-      t2 = axes.col((k + 2) % 3);
-    } else {
-      const Eigen::Vector3d helper =
-          std::abs(toward[0]) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-      t1 = toward.cross(helper).normalized();
-      t2 = toward.cross(t1);
-    }
-    thread_local Eigen::Matrix3Xd points(3, 8);
-    thread_local std::vector<Eigen::Vector3d> local(8);
-    for (int k = 0; k < 8; ++k) {
-      const double angle = M_PI / 4 * k;
-      const double tilt = k % 2 == 0 ? kManifoldTilt : kManifoldCornerTilt;
-      const Eigen::Vector3d t = std::cos(angle) * t1 + std::sin(angle) * t2;
-      local[std::size_t(k)] = from.shape->supportPoint(
-          from.q.inverse() * (std::cos(tilt) * centre + std::sin(tilt) * t));  // from's frame
-      points.col(k) = from.toWorld(local[std::size_t(k)]);
-    }
-    thread_local std::vector<fse::VertexContact<double>> found;
-    fse::BatchOptions<double> options;
-    options.threads = 1;
-    fse::verticesWithinMargin(*other.shape, other.transform(), points, margin, found, options);
-    appendPointContacts(
-        found, i_from, other, i_other, [&](Eigen::Index k) { return local[std::size_t(k)]; }, out);
+    fse::ManifoldOptions<double> options;
+    options.patch_tolerance = 1e-3 * std::min(a.shape->size(), b.shape->size());
+    options.outline_area_tolerance = 1;
+    const fse::ContactManifold<double> region =
+        fse::contactManifold(*a.shape, a.transform(), *b.shape, b.transform(), options, kept.warm);
+    updatePlaces(a, i, b, j, region, n, options.patch_tolerance, options.max_points, kept, out);
   }
 
   /// Vertices of body i against body j's implicit surface.
@@ -418,6 +405,7 @@ struct RigidContactFinder::Impl {
                const std::vector<double>& travel, ContactModel pair_model, bool measuring,
                std::vector<RigidContact>& out) {
     collectJobs(bodies, tolerance, travel);
+    if (!measuring && pair_model == ContactModel::kExact) attachPlaces(bodies.size());
     const bool vertex_model =
         pair_model == ContactModel::kVertices || pair_model == ContactModel::kPaper;
     if (vertex_model) {
@@ -440,7 +428,7 @@ struct RigidContactFinder::Impl {
         verticesAgainst(bodies, job.a, job.b, job.margin, slot);
         verticesAgainst(bodies, job.b, job.a, job.margin, slot);
       } else {
-        exactPair(bodies, job.a, job.b, job.margin, !measuring, slot);
+        exactPair(bodies, job.a, job.b, job.margin, measuring ? nullptr : job.places, slot);
       }
     });
     out.clear();

@@ -5,8 +5,9 @@
 // body and the fixed bowl, for one step (docs/scenes.md → "Contact models"). Body pairs whose
 // bounding spheres and bounding boxes come within the margin go to the run's contact model:
 //   exact     the library's superellipsoid–superellipsoid pair (its signed distance, along the
-//             normal whose gap equals it) and a manifold: each body's support points in eight
-//             directions tilted from the normal, against the other's exact surface;
+//             normal whose gap equals it) and its contact region (fse::contactManifold), whose
+//             places the pair keeps from step to step (contact/persistent_places.h), and a
+//             support contact along the normal for while a body turns fast (turning_only);
 //   vertices  each body's tessellation vertices against the other's implicit surface, both
 //             ways, through the library's batched queries with the Exact solver (the paper's
 //             model: one contact per vertex within the margin);
@@ -49,6 +50,16 @@ struct RigidContact {
   /// b's (or of the plane) is what keeps them apart.
   bool follows_support = false;
   double support_offset = 0;  ///< m
+  /// A support contact that holds the pair only while one of its bodies turns fast enough to
+  /// bring another point lowest within the step; otherwise the region's places (kept as
+  /// material points) hold it, and the step drops this one.
+  bool turning_only = false;
+  /// m, ≥ 0: the solver holds the separation less this (a persistent place's offset: how far
+  /// it stood beyond the pair's distance when it was born; contact/persistent_places.h).
+  double offset = 0;
+  /// A persistent place: its two points were over each other along n when it was born, and
+  /// static friction holds them so (not only their slip within a substep).
+  bool anchored = false;
 };
 
 /// The contact of body a (index ia) with body b (index ib; b null and ib = −1: the bowl) from

@@ -71,6 +71,60 @@ void RigidContactSolver::begin(const std::vector<RigidBody>& bodies,
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     vn_before_[k] = contacts[k].n.dot(relativeVelocity(bodies, contacts[k]));
   }
+  groupContacts(contacts);
+}
+
+void RigidContactSolver::groupContacts(const std::vector<RigidContact>& contacts) {
+  // A pair's contacts come out of detection one after another; a group is a run of them whose
+  // normals (turned to the group's orientation) lie within kGroupAngle of its first's.
+  groups_.clear();
+  const double cos_limit = std::cos(kGroupAngle);
+  std::size_t pair_start = 0;  // the first group of the current pair
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const RigidContact& c = contacts[k];
+    if (k > 0 && pairKey(c) != pairKey(contacts[k - 1])) pair_start = groups_.size();
+    int found = -1;
+    for (std::size_t g = pair_start; g < groups_.size() && found < 0; ++g) {
+      const RigidContact& first = contacts[std::size_t(groups_[g].members.front())];
+      const double sign = first.a == c.a ? 1.0 : -1.0;
+      if (sign * first.n.dot(c.n) >= cos_limit) found = int(g);
+    }
+    if (found < 0) {
+      found = int(groups_.size());
+      groups_.emplace_back();
+    }
+    groups_[std::size_t(found)].members.push_back(int(k));
+  }
+}
+RigidContactSolver::Patch RigidContactSolver::patchOf(const std::vector<RigidBody>& bodies,
+                                                      const std::vector<RigidContact>& contacts,
+                                                      const Group& group) const {
+  Patch patch;
+  const RigidContact& first = contacts[std::size_t(group.members.front())];
+  patch.a = first.a;
+  patch.b = first.b;
+  Eigen::Vector3d on_a = Eigen::Vector3d::Zero(), on_b = Eigen::Vector3d::Zero();
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();
+  for (const int k : group.members) {
+    const double lambda = lambda_n_[std::size_t(k)];
+    if (!(lambda > 0)) continue;
+    const RigidContact& c = contacts[std::size_t(k)];
+    const bool same = c.a == patch.a;
+    const Eigen::Vector3d p_a = bodies[std::size_t(c.a)].toWorld(c.r_a);
+    const Eigen::Vector3d p_b = pointOnB(bodies, c);
+    on_a += lambda * (same ? p_a : p_b);
+    on_b += lambda * (same ? p_b : p_a);
+    n += lambda * (same ? c.n : Eigen::Vector3d(-c.n));
+    patch.lambda += lambda;
+  }
+  if (patch.lambda > 0 && n.norm() > 0) {
+    patch.on_a = on_a / patch.lambda;
+    patch.on_b = on_b / patch.lambda;
+    patch.n = n.normalized();
+  } else {
+    patch.lambda = 0;
+  }
+  return patch;
 }
 
 void RigidContactSolver::projectPositions(std::vector<RigidBody>& bodies,
@@ -85,32 +139,26 @@ void RigidContactSolver::projectPositions(std::vector<RigidBody>& bodies,
     budget_[k] = (std::max(0.0, -vn_before_[k]) + kMaxDepenetrationSpeed) * h;
   }
   for (int iteration = 0; iteration < kPositionIterations; ++iteration) {
-    for (std::size_t k = 0; k < contacts.size(); ++k) {
-      const RigidContact& c = contacts[k];
-      RigidBody& a = bodies[std::size_t(c.a)];
-      RigidBody* b = otherBody(bodies, c);
-      Eigen::Vector3d p_a = a.toWorld(c.r_a), p_b = pointOnB(bodies, c);
-      const double d = std::min((p_b - p_a).dot(c.n) + skin_, budget_[k] - pushed_[k]);
-      if (d <= 0) continue;
-      const double w = pairInverseMass(a, b, p_a, p_b, c.n);
-      if (w <= 0) continue;
-      applyPair(a, b, (d / w) * c.n, p_a, p_b, true);
-      pushed_[k] += d;
-      lambda_n_[k] += d / w;
+    for (const Group& group : groups_) {
+      for (const int index : group.members) {
+        const auto k = std::size_t(index);
+        const RigidContact& c = contacts[k];
+        RigidBody& a = bodies[std::size_t(c.a)];
+        RigidBody* b = otherBody(bodies, c);
+        const Eigen::Vector3d p_a = a.toWorld(c.r_a), p_b = pointOnB(bodies, c);
+        const double d = std::min((p_b - p_a).dot(c.n) + c.offset + skin_, budget_[k] - pushed_[k]);
+        if (d <= 0) continue;
+        const double w = pairInverseMass(a, b, p_a, p_b, c.n);
+        if (w <= 0) continue;
+        applyPair(a, b, (d / w) * c.n, p_a, p_b, true);
+        pushed_[k] += d;
+        lambda_n_[k] += d / w;
+      }
       if (!friction_) continue;
-      // Static friction: the tangential slip of the contact points over the substep.
-      p_a = a.toWorld(c.r_a);
-      p_b = pointOnB(bodies, c);
-      const Eigen::Vector3d prev_b = b != nullptr ? b->toWorldPrevious(c.r_b) : c.r_b;
-      Eigen::Vector3d slip = (p_a - a.toWorldPrevious(c.r_a)) - (p_b - prev_b);
-      slip -= slip.dot(c.n) * c.n;
-      const double length = slip.norm();
-      if (length <= 0) continue;
-      const Eigen::Vector3d t = slip / length;
-      const double w_t = pairInverseMass(a, b, p_a, p_b, t);
-      if (w_t <= 0) continue;
-      const double lambda_t = length / w_t;
-      if (lambda_t < mu_static_ * lambda_n_[k]) applyPair(a, b, -lambda_t * t, p_a, p_b, true);
+      holdPatch(bodies, contacts, group);
+      for (const int index : group.members) {
+        holdPlace(bodies, contacts[std::size_t(index)], lambda_n_[std::size_t(index)]);
+      }
     }
   }
   active_.clear();
@@ -119,11 +167,60 @@ void RigidContactSolver::projectPositions(std::vector<RigidBody>& bodies,
   }
 }
 
+void RigidContactSolver::holdPlace(std::vector<RigidBody>& bodies, const RigidContact& c,
+                                   double lambda_n) const {
+  // Static friction at one contact: its points' tangential slip over the substep (an anchored
+  // place: how far its points lie apart along the contact plane), undone while the impulse that
+  // takes is below μs times the contact's normal impulse.
+  if (!(lambda_n > 0)) return;
+  RigidBody& a = bodies[std::size_t(c.a)];
+  RigidBody* b = otherBody(bodies, c);
+  const Eigen::Vector3d p_a = a.toWorld(c.r_a), p_b = pointOnB(bodies, c);
+  Eigen::Vector3d slip = p_a - p_b;
+  if (!c.anchored) {
+    const Eigen::Vector3d prev_b = b != nullptr ? b->toWorldPrevious(c.r_b) : c.r_b;
+    slip = (p_a - a.toWorldPrevious(c.r_a)) - (p_b - prev_b);
+  }
+  slip -= slip.dot(c.n) * c.n;
+  const double length = slip.norm();
+  if (!(length > 0)) return;
+  const Eigen::Vector3d t = slip / length;
+  const double w_t = pairInverseMass(a, b, p_a, p_b, t);
+  if (!(w_t > 0)) return;
+  const double lambda_t = length / w_t;
+  if (lambda_t < mu_static_ * lambda_n) applyPair(a, b, -lambda_t * t, p_a, p_b, true);
+}
+
+void RigidContactSolver::holdPatch(std::vector<RigidBody>& bodies,
+                                   const std::vector<RigidContact>& contacts,
+                                   const Group& group) const {
+  // Static friction on the patch as a whole: the tangential slip over the substep of the two
+  // bodies' material points at its centre, undone while the impulse that takes is below μs
+  // times the patch's normal impulse.
+  const Patch patch = patchOf(bodies, contacts, group);
+  if (!(patch.lambda > 0)) return;
+  RigidBody& a = bodies[std::size_t(patch.a)];
+  RigidBody* b = patch.b >= 0 ? &bodies[std::size_t(patch.b)] : nullptr;
+  const Eigen::Vector3d before_a = a.toWorldPrevious(a.q.inverse() * (patch.on_a - a.x));
+  const Eigen::Vector3d before_b =
+      b != nullptr ? b->toWorldPrevious(b->q.inverse() * (patch.on_b - b->x)) : patch.on_b;
+  Eigen::Vector3d slip = (patch.on_a - before_a) - (patch.on_b - before_b);
+  slip -= slip.dot(patch.n) * patch.n;
+  const double length = slip.norm();
+  if (!(length > 0)) return;
+  const Eigen::Vector3d t = slip / length;
+  const double w_t = pairInverseMass(a, b, patch.on_a, patch.on_b, t);
+  if (!(w_t > 0)) return;
+  const double lambda_t = length / w_t;
+  if (lambda_t < mu_static_ * patch.lambda) {
+    applyPair(a, b, -lambda_t * t, patch.on_a, patch.on_b, true);
+  }
+}
+
 void RigidContactSolver::solveVelocities(std::vector<RigidBody>& bodies,
-                                         const std::vector<RigidContact>& contacts,
-                                         double h) const {
+                                         const std::vector<RigidContact>& contacts, double h) {
   // Restitution once per pair of bodies (or body and bowl): at its active contact that closed
-  // in fastest, and after the pair's other contacts have had their normal velocity set to 0
+  // in fastest, after the pair's other contacts have had their normal velocity set to 0
   // (otherwise they would cancel the bounce). Each contact of a face setting its own bounce
   // would spin the bodies up, one lever arm after another, past the energy they met with.
   std::unordered_map<long, std::size_t> fastest;  // pair → its fastest-closing active contact
@@ -132,39 +229,57 @@ void RigidContactSolver::solveVelocities(std::vector<RigidBody>& bodies,
     const auto [it, added] = fastest.emplace(pairKey(contacts[k]), k);
     if (!added && vn_before_[k] < vn_before_[it->second]) it->second = k;
   }
-  for (const bool bouncing : {false, true}) {
-    for (const int index : active_) {
-      const auto k = std::size_t(index);
-      const bool primary = fastest.at(pairKey(contacts[k])) == k;
-      if (primary != bouncing) continue;
-      const double e = primary && std::abs(vn_before_[k]) > 2 * gravity_ * h ? restitution_ : 0.0;
-      solveContactVelocity(bodies, contacts[k], -e * vn_before_[k], lambda_n_[k], h);
+  friction_impulse_.assign(groups_.size(), Eigen::Vector3d::Zero());
+  for (int iteration = 0; iteration < kVelocityIterations; ++iteration) {
+    for (const bool bouncing : {false, true}) {
+      for (const int index : active_) {
+        const auto k = std::size_t(index);
+        const bool primary = fastest.at(pairKey(contacts[k])) == k;
+        if (primary != bouncing) continue;
+        const double e = primary && std::abs(vn_before_[k]) > 2 * gravity_ * h ? restitution_ : 0.0;
+        solveNormalVelocity(bodies, contacts[k], -e * vn_before_[k]);
+      }
+    }
+    if (!friction_) continue;
+    for (std::size_t g = 0; g < groups_.size(); ++g) {
+      slidePatch(bodies, contacts, groups_[g], h, friction_impulse_[g]);
     }
   }
 }
 
-void RigidContactSolver::solveContactVelocity(std::vector<RigidBody>& bodies, const RigidContact& c,
-                                              double bounce, double lambda_n, double h) const {
+void RigidContactSolver::solveNormalVelocity(std::vector<RigidBody>& bodies, const RigidContact& c,
+                                             double bounce) const {
   RigidBody& a = bodies[std::size_t(c.a)];
   RigidBody* b = otherBody(bodies, c);
   const Eigen::Vector3d p_a = a.toWorld(c.r_a), p_b = pointOnB(bodies, c);
-  // The normal velocity first, then friction on the tangential velocity that is left, each as
-  // its own impulse (an impulse along a mix of the two would not change the relative velocity
-  // along itself: the generalised inverse mass differs by direction).
   const double dvn = -c.n.dot(relativeVelocity(bodies, c)) + std::max(bounce, 0.0);
   const double w_n = pairInverseMass(a, b, p_a, p_b, c.n);
   if (dvn != 0 && w_n > 0) applyPair(a, b, (dvn / w_n) * c.n, p_a, p_b, false);
-  if (!friction_) return;
-  const Eigen::Vector3d v = relativeVelocity(bodies, c);
-  const Eigen::Vector3d vt = v - c.n.dot(v) * c.n;
+}
+
+void RigidContactSolver::slidePatch(std::vector<RigidBody>& bodies,
+                                    const std::vector<RigidContact>& contacts, const Group& group,
+                                    double h, Eigen::Vector3d& applied) const {
+  // Dynamic friction on the patch as a whole, at its centre: the normal force is λn/h², so the
+  // friction impulse (all sweeps together: `applied`) is at most μd·|fn|·h = μd·λn/h; within
+  // that, what stops the tangential motion there.
+  const Patch patch = patchOf(bodies, contacts, group);
+  if (!(patch.lambda > 0)) return;
+  RigidBody& a = bodies[std::size_t(patch.a)];
+  RigidBody* b = patch.b >= 0 ? &bodies[std::size_t(patch.b)] : nullptr;
+  Eigen::Vector3d v = a.velocityAt(patch.on_a - a.x);
+  if (b != nullptr) v -= b->velocityAt(patch.on_b - b->x);
+  const Eigen::Vector3d vt = v - patch.n.dot(v) * patch.n;
   const double speed_t = vt.norm();
   if (!(speed_t > 0)) return;
-  // Dynamic friction: the normal force is λn/h², so the friction impulse is at most
-  // μd·|fn|·h = μd·λn/h, or what stops the tangential motion at the contact.
   const Eigen::Vector3d t = vt / speed_t;
-  const double w_t = pairInverseMass(a, b, p_a, p_b, t);
+  const double w_t = pairInverseMass(a, b, patch.on_a, patch.on_b, t);
   if (!(w_t > 0)) return;
-  applyPair(a, b, -std::min(mu_dynamic_ * lambda_n / h, speed_t / w_t) * t, p_a, p_b, false);
+  Eigen::Vector3d total = applied - (speed_t / w_t) * t;
+  const double bound = mu_dynamic_ * patch.lambda / h;
+  if (total.norm() > bound) total *= bound / total.norm();
+  applyPair(a, b, total - applied, patch.on_a, patch.on_b, false);
+  applied = total;
 }
 
 }  // namespace fse_sim

@@ -62,6 +62,11 @@ void RigidSimulation::detect(double h) {
   for (RigidContact& c : contacts_) {
     c.follows_support = c.follows_support && (turns(c.a) || turns(c.b));
   }
+  // A pair held by its persistent places needs its support contact only while it turns fast.
+  contacts_.erase(
+      std::remove_if(contacts_.begin(), contacts_.end(),
+                     [](const RigidContact& c) { return c.turning_only && !c.follows_support; }),
+      contacts_.end());
 }
 
 void RigidSimulation::substep(double h) {

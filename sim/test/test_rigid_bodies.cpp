@@ -62,18 +62,17 @@ double slideAfter(double theta_deg, double mu, ContactModel model, double second
 }
 
 TEST(RigidBodiesTest, StaticFrictionHoldsWhenMuExceedsTanTheta) {
-  // θ = 20°: tan θ = 0.364; μ = 0.5 holds the slider (the vertex model: the exact model's
-  // sparse manifold lets a box rock on its corners and creep: docs/scenes.md → "Limitations").
+  // θ = 20°: tan θ = 0.364; μ = 0.5 holds the slider (the vertex model; the exact model's
+  // inclines: test_resting_contact.cpp).
   EXPECT_LT(std::abs(slideAfter(20, 0.5, ContactModel::kVertices, 1.0)), 0.005);
 }
 
 TEST(RigidBodiesTest, SlidingAcceleratesAtGTimesSinMinusMuCos) {
   // θ = 30°, μ = 0.2: a = g(sin θ − μ cos θ) = 3.206 m/s², s(1 s) = a/2 = 1.603 m. The vertex
-  // model holds the slider's face at many points. (The exact model holds a face on its manifold
-  // of support points, which lets a sliding box ride on one corner: docs/scenes.md →
-  // "Limitations".) Within 5 %: the Gauss–Seidel sweeps per substep leave the face's normal
-  // impulse a little short of the weight (each contact alone also turns the body, so it pushes
-  // less than the whole sink), and the friction it bounds with it.
+  // model holds the slider's face at many points (the exact model's inclines:
+  // test_resting_contact.cpp). Within 5 %: the Gauss–Seidel sweeps per substep leave the face's
+  // normal impulse a little short of the weight (each contact alone also turns the body, so it
+  // pushes less than the whole sink), and the friction it bounds with it.
   const double t = 30 * M_PI / 180, mu = 0.2;
   const double expected = 0.5 * kG * (std::sin(t) - mu * std::cos(t));
   EXPECT_NEAR(slideAfter(30, mu, ContactModel::kVertices, 1.0), expected, 0.05 * expected);
