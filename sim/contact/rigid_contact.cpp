@@ -110,6 +110,7 @@ struct RigidContactFinder::Impl {
   };
   /// The exact model's persistent places of each body pair in reach, by pair (i·n + j).
   std::unordered_map<long, PairPlaces> places;
+  double skin = 0;  ///< m: how far apart the solver holds resting contacts this step
   std::vector<Job> jobs;
   std::vector<std::vector<RigidContact>> slots;
 
@@ -234,7 +235,7 @@ struct RigidContactFinder::Impl {
     const Eigen::Vector3d on_b =
         b.toWorld(b.shape->supportPoint(b.q.inverse() * n)) + (best - d) * n;
     const std::size_t before = out.size();
-    if (kept != nullptr) regionContacts(a, i, b, j, n, *kept, out);
+    if (kept != nullptr) regionContacts(a, i, b, j, n, skin, *kept, out);
     const bool has_places = out.size() > before;
     out.push_back(contactAt(a, i, &b, j, d, on_a, on_b, n));
     out.back().follows_support = true;
@@ -245,12 +246,13 @@ struct RigidContactFinder::Impl {
   /// The pair's contact region from the library (fse::contactManifold, a as the shape, warm-
   /// started from the pair's last one; the outline unrefined: only its reduced places are
   /// used), whose places update the pair's persistent places (contact/persistent_places.h); a
-  /// contact for each. The patch tolerance is 1e-3 × the smaller body's size.
+  /// contact for each. The patch tolerance is 1e-3 × the smaller body's size plus the skin: a
+  /// resting pair is held the skin apart, and its region must reach across that.
   static void regionContacts(const RigidBody& a, int i, const RigidBody& b, int j,
-                             const Eigen::Vector3d& n, PairPlaces& kept,
+                             const Eigen::Vector3d& n, double skin, PairPlaces& kept,
                              std::vector<RigidContact>& out) {
     fse::ManifoldOptions<double> options;
-    options.patch_tolerance = 1e-3 * std::min(a.shape->size(), b.shape->size());
+    options.patch_tolerance = 1e-3 * std::min(a.shape->size(), b.shape->size()) + skin;
     options.outline_area_tolerance = 1;
     const fse::ContactManifold<double> region =
         fse::contactManifold(*a.shape, a.transform(), *b.shape, b.transform(), options, kept.warm);
@@ -405,6 +407,7 @@ struct RigidContactFinder::Impl {
                const std::vector<double>& travel, ContactModel pair_model, bool measuring,
                std::vector<RigidContact>& out) {
     collectJobs(bodies, tolerance, travel);
+    skin = kRigidSkinPerTolerance * tolerance;
     if (!measuring && pair_model == ContactModel::kExact) attachPlaces(bodies.size());
     const bool vertex_model =
         pair_model == ContactModel::kVertices || pair_model == ContactModel::kPaper;

@@ -33,6 +33,10 @@
 
 namespace fse_sim {
 
+/// The skin: the solver holds resting contacts this share of the tolerance apart rather than
+/// exactly touching (physics/rigid_contact_solver.h); the exact model's regions reach across it.
+constexpr double kRigidSkinPerTolerance = 0.01;
+
 /// A contact for one step: body a's point r_a (a's frame) and the point r_b on b (b's frame;
 /// the world for the bowl); a separates from b by moving along +n. Their separation
 /// (p_a − p_b)·n is the signed distance at detection and is kept ≥ 0 by the solver.

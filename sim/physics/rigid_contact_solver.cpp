@@ -62,7 +62,7 @@ RigidContactSolver::RigidContactSolver(const Scene& scene) {
   }
   if (scene.restitution) restitution_ = scene.restitution->coefficient;
   if (scene.gravity) gravity_ = scene.gravity->acceleration.norm();
-  skin_ = kSkinPerTolerance * scene.rigid_contact->tolerance;
+  skin_ = kRigidSkinPerTolerance * scene.rigid_contact->tolerance;
 }
 
 void RigidContactSolver::begin(const std::vector<RigidBody>& bodies,
@@ -155,9 +155,14 @@ void RigidContactSolver::projectPositions(std::vector<RigidBody>& bodies,
         lambda_n_[k] += d / w;
       }
       if (!friction_) continue;
-      holdPatch(bodies, contacts, group);
+      // Then each contact's hold, against its own normal impulse; a persistent place's against
+      // the patch's: Coulomb's bound holds for the face as a whole, however the sweeps have
+      // shared its normal impulse among its places.
+      const double patch_lambda = holdPatch(bodies, contacts, group);
       for (const int index : group.members) {
-        holdPlace(bodies, contacts[std::size_t(index)], lambda_n_[std::size_t(index)]);
+        const RigidContact& c = contacts[std::size_t(index)];
+        const double own = lambda_n_[std::size_t(index)];
+        if (own > 0) holdPlace(bodies, c, c.anchored ? patch_lambda : own);
       }
     }
   }
@@ -171,7 +176,7 @@ void RigidContactSolver::holdPlace(std::vector<RigidBody>& bodies, const RigidCo
                                    double lambda_n) const {
   // Static friction at one contact: its points' tangential slip over the substep (an anchored
   // place: how far its points lie apart along the contact plane), undone while the impulse that
-  // takes is below μs times the contact's normal impulse.
+  // takes is below μs·λn.
   if (!(lambda_n > 0)) return;
   RigidBody& a = bodies[std::size_t(c.a)];
   RigidBody* b = otherBody(bodies, c);
@@ -191,14 +196,14 @@ void RigidContactSolver::holdPlace(std::vector<RigidBody>& bodies, const RigidCo
   if (lambda_t < mu_static_ * lambda_n) applyPair(a, b, -lambda_t * t, p_a, p_b, true);
 }
 
-void RigidContactSolver::holdPatch(std::vector<RigidBody>& bodies,
-                                   const std::vector<RigidContact>& contacts,
-                                   const Group& group) const {
+double RigidContactSolver::holdPatch(std::vector<RigidBody>& bodies,
+                                     const std::vector<RigidContact>& contacts,
+                                     const Group& group) const {
   // Static friction on the patch as a whole: the tangential slip over the substep of the two
   // bodies' material points at its centre, undone while the impulse that takes is below μs
   // times the patch's normal impulse.
   const Patch patch = patchOf(bodies, contacts, group);
-  if (!(patch.lambda > 0)) return;
+  if (!(patch.lambda > 0)) return 0;
   RigidBody& a = bodies[std::size_t(patch.a)];
   RigidBody* b = patch.b >= 0 ? &bodies[std::size_t(patch.b)] : nullptr;
   const Eigen::Vector3d before_a = a.toWorldPrevious(a.q.inverse() * (patch.on_a - a.x));
@@ -207,14 +212,15 @@ void RigidContactSolver::holdPatch(std::vector<RigidBody>& bodies,
   Eigen::Vector3d slip = (patch.on_a - before_a) - (patch.on_b - before_b);
   slip -= slip.dot(patch.n) * patch.n;
   const double length = slip.norm();
-  if (!(length > 0)) return;
+  if (!(length > 0)) return patch.lambda;
   const Eigen::Vector3d t = slip / length;
   const double w_t = pairInverseMass(a, b, patch.on_a, patch.on_b, t);
-  if (!(w_t > 0)) return;
+  if (!(w_t > 0)) return patch.lambda;
   const double lambda_t = length / w_t;
   if (lambda_t < mu_static_ * patch.lambda) {
     applyPair(a, b, -lambda_t * t, patch.on_a, patch.on_b, true);
   }
+  return patch.lambda;
 }
 
 void RigidContactSolver::solveVelocities(std::vector<RigidBody>& bodies,

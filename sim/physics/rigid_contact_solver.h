@@ -18,10 +18,12 @@
 //                  behind is undone over several substeps, not in one push that the velocity
 //                  update would turn into an explosion. After each patch's pushes, static
 //                  friction: the slip of the substep at the patch's centre is undone while that
-//                  takes less than μs times the patch's normal impulse, and then at each contact
-//                  the same against its own (an anchored contact, a persistent place: how far
-//                  its two points lie apart along the contact plane, so that a resting body's
-//                  residue of one substep does not add up to a creep);
+//                  takes less than μs times the patch's normal impulse, and then at each of its
+//                  contacts against its own. An anchored contact, a persistent place, undoes how
+//                  far its two points lie apart along the contact plane (so that a resting
+//                  body's residue of one substep does not add up to a creep), against the
+//                  patch's bound: Coulomb's law holds for the face as a whole, however the
+//                  sweeps share its normal impulse among its places;
 //   velocity pass  kVelocityIterations sweeps over the contacts resolved in the position pass:
 //                  the normal velocity is set to −e times the one before the substep at the
 //                  contact of each pair that closed in fastest, to 0 at the others before it
@@ -74,8 +76,7 @@ class RigidContactSolver {
   double mu_static_ = 0, mu_dynamic_ = 0;
   bool friction_ = false;
   double restitution_ = 0;
-  double gravity_ = 0;  ///< |g|
-  static constexpr double kSkinPerTolerance = 0.01;
+  double gravity_ = 0;             ///< |g|
   double skin_ = 0;                ///< m
   std::vector<double> vn_before_;  ///< per contact
   std::vector<int> active_;        ///< contacts resolved in the position pass
@@ -101,8 +102,9 @@ class RigidContactSolver {
   void groupContacts(const std::vector<RigidContact>& contacts);
   Patch patchOf(const std::vector<RigidBody>& bodies, const std::vector<RigidContact>& contacts,
                 const Group& group) const;
-  void holdPatch(std::vector<RigidBody>& bodies, const std::vector<RigidContact>& contacts,
-                 const Group& group) const;
+  /// Returns the patch's normal impulse.
+  double holdPatch(std::vector<RigidBody>& bodies, const std::vector<RigidContact>& contacts,
+                   const Group& group) const;
   void holdPlace(std::vector<RigidBody>& bodies, const RigidContact& c, double lambda_n) const;
   void slidePatch(std::vector<RigidBody>& bodies, const std::vector<RigidContact>& contacts,
                   const Group& group, double h, Eigen::Vector3d& applied) const;

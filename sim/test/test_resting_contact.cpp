@@ -68,7 +68,7 @@ struct Trial {
   std::vector<Eigen::Vector3d> x0;
   std::vector<Eigen::Quaterniond> q0;
 
-  Trial(double theta_deg, const std::vector<Block>& blocks, double mu, double gap,
+  Trial(double theta_deg, const std::vector<Block>& blocks, double mu, double gap, double tolerance,
         double yaw_deg = 0) {
     const std::string mu_text = std::to_string(mu);
     const Scene scene =
@@ -115,6 +115,10 @@ struct Trial {
 
 const Block kSlider{{0.3, 0.3, 0.2}, 0.1, 0.1};
 
+/// The scene's contact tolerances tried: the skin the solver holds resting bodies apart by is
+/// 1 % of it, from 1e-5 m (far below the patch tolerance) to 5e-4 m (above it).
+const std::vector<double> kTolerances = {0.001, 0.01, 0.05};
+
 /// Box-like bodies of other proportions, sizes and exponents (≤ 0.2, the "box-like").
 std::vector<Block> blocks() {
   return {kSlider,
@@ -126,13 +130,15 @@ std::vector<Block> blocks() {
 TEST(RestingContactTest, BoxLikeBodiesAtRestOnAFaceStayThere) {
   // Placed 0.1 mm above the face; after half a second they rest on the contact's skin, and in
   // the next ten seconds they move by less than 1e-4 m and turn by less than 1e-4 rad.
-  for (const Block& block : blocks()) {
-    Trial trial(0, {block}, 0.5, 1e-4);
-    trial.advance(0.5);
-    trial.mark();
-    trial.advance(10.0);
-    EXPECT_LT(trial.largestShift(), 1e-4) << vec(block.radii);
-    EXPECT_LT(trial.largestTurn(), 1e-4) << vec(block.radii);
+  for (const double tolerance : kTolerances) {
+    for (const Block& block : blocks()) {
+      Trial trial(0, {block}, 0.5, 1e-4, tolerance);
+      trial.advance(0.5);
+      trial.mark();
+      trial.advance(10.0);
+      EXPECT_LT(trial.largestShift(), 1e-4) << vec(block.radii) << ", tolerance " << tolerance;
+      EXPECT_LT(trial.largestTurn(), 1e-4) << vec(block.radii) << ", tolerance " << tolerance;
+    }
   }
 }
 
@@ -140,15 +146,18 @@ TEST(RestingContactTest, SlidersAccelerateAtGTimesSinMinusMuCos) {
   // From rest, s(t) = ½·g(sin θ − μ cos θ)·t², within 2 %.
   for (const auto& [theta, mu] :
        std::vector<std::pair<double, double>>{{30, 0.2}, {20, 0.1}, {45, 0.5}, {15, 0.0}}) {
-    for (const Block& block : blocks()) {
-      Trial trial(theta, {block}, mu, 1e-4);
-      trial.advance(1.0);
-      const double t = theta * M_PI / 180;
-      const Eigen::Vector3d down(std::cos(t), 0, -std::sin(t));
-      const double s = (trial.sim->bodies()[1].x - trial.x0[1]).dot(down);
-      const double expected = 0.5 * kG * (std::sin(t) - mu * std::cos(t));
-      EXPECT_NEAR(s, expected, 0.02 * expected)
-          << "θ " << theta << "°, μ " << mu << ", " << vec(block.radii);
+    for (const double tolerance : kTolerances) {
+      for (const Block& block : blocks()) {
+        Trial trial(theta, {block}, mu, 1e-4, tolerance);
+        trial.advance(1.0);
+        const double t = theta * M_PI / 180;
+        const Eigen::Vector3d down(std::cos(t), 0, -std::sin(t));
+        const double s = (trial.sim->bodies()[1].x - trial.x0[1]).dot(down);
+        const double expected = 0.5 * kG * (std::sin(t) - mu * std::cos(t));
+        EXPECT_NEAR(s, expected, 0.02 * expected)
+            << "θ " << theta << "°, μ " << mu << ", " << vec(block.radii) << ", tolerance "
+            << tolerance;
+      }
     }
   }
 }
@@ -157,13 +166,15 @@ TEST(RestingContactTest, StaticFrictionHoldsBoxLikeBodiesOnInclines) {
   // μ > tan θ: after settling for half a second, less than 1e-4 m in five seconds.
   for (const auto& [theta, mu] :
        std::vector<std::pair<double, double>>{{20, 0.5}, {10, 0.2}, {35, 0.8}}) {
-    for (const Block& block : blocks()) {
-      Trial trial(theta, {block}, mu, 1e-4);
-      trial.advance(0.5);
-      trial.mark();
-      trial.advance(5.0);
-      EXPECT_LT(trial.largestShift(), 1e-4)
-          << "θ " << theta << "°, μ " << mu << ", " << vec(block.radii);
+    for (const double tolerance : kTolerances) {
+      for (const Block& block : blocks()) {
+        Trial trial(theta, {block}, mu, 1e-4, tolerance);
+        trial.advance(0.5);
+        trial.mark();
+        trial.advance(5.0);
+        EXPECT_LT(trial.largestShift(), 1e-4) << "θ " << theta << "°, μ " << mu << ", "
+                                              << vec(block.radii) << ", tolerance " << tolerance;
+      }
     }
   }
 }
@@ -171,7 +182,9 @@ TEST(RestingContactTest, StaticFrictionHoldsBoxLikeBodiesOnInclines) {
 TEST(RestingContactTest, StacksOfFiveStand) {
   // Five bodies on each other, placed touching (1e-6 m apart) or 0.1 mm apart, of one kind or
   // narrowing upwards, turned against each other or not: after half a second, every body
-  // within 1 mm of where it was for ten seconds.
+  // within 1 mm of where it was for ten seconds. (With tolerances of 0.02 m and more, the
+  // skin's first pushes between bodies placed touching shake a stack of five by 1–15 mm:
+  // docs/scenes.md → "Limitations (rigid bodies)".)
   const std::vector<std::vector<Block>> stacks = {std::vector<Block>(5, kSlider),
                                                   {{{0.5, 0.5, 0.2}, 0.1, 0.1},
                                                    {{0.4, 0.4, 0.2}, 0.1, 0.1},
@@ -179,14 +192,16 @@ TEST(RestingContactTest, StacksOfFiveStand) {
                                                    {{0.25, 0.3, 0.2}, 0.1, 0.1},
                                                    {{0.2, 0.2, 0.1}, 0.1, 0.05}}};
   for (std::size_t k = 0; k < stacks.size(); ++k) {
-    for (const double gap : {1e-6, 1e-4}) {
-      for (const double yaw : {0.0, 15.0}) {
-        Trial trial(0, stacks[k], 0.5, gap, yaw);
-        trial.advance(0.5);
-        trial.mark();
-        trial.advance(10.0);
-        EXPECT_LT(trial.largestShift(), 1e-3)
-            << "stack " << k << ", gap " << gap << ", yaw " << yaw;
+    for (const double tolerance : {0.001, 0.01}) {
+      for (const double gap : {1e-6, 1e-4}) {
+        for (const double yaw : {0.0, 15.0}) {
+          Trial trial(0, stacks[k], 0.5, gap, tolerance, yaw);
+          trial.advance(0.5);
+          trial.mark();
+          trial.advance(10.0);
+          EXPECT_LT(trial.largestShift(), 1e-3)
+              << "stack " << k << ", gap " << gap << ", yaw " << yaw << ", tolerance " << tolerance;
+        }
       }
     }
   }
