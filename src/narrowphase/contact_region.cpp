@@ -311,32 +311,39 @@ ContactManifold<S> regionOfPieces(const RegionBody<S>& a,
     for (const OutlinePoint<S>& o : polygon) centroid += o.y;
     return polygon.empty() ? centroid : Vector2<S>(centroid / S(polygon.size()));
   };
-  // The place above y on the plane against b (the shape's surface point known if `known` is
-  // an exact outline point at y), or a little towards `centroid` where a line misses a body by
-  // rounding; std::nullopt where it still does. Rounding on bodies far apart in scale (a float
-  // sphere of radius 3.7e30 on a unit shape) can overflow a measurement: such a place is
+  // The place at y on the plane between a's surface `up` above it and b's `down` below, if both
+  // lines met their bodies and the place is finite. Rounding on bodies far apart in scale (a
+  // float sphere of radius 3.7e30 on a unit shape) can overflow a measurement: such a place is
   // dropped like a missed one.
+  const auto placeAt = [&](const Vector2<S>& y, const Vector3<S>& at, const std::optional<S>& up,
+                           const std::optional<S>& down) -> std::optional<Place<S>> {
+    if (!up || !down) return std::nullopt;
+    ManifoldPoint<S> p;
+    p.on_shape = at + *up * n;
+    p.on_other = at - *down * n;
+    p.position = S(0.5) * (p.on_shape + p.on_other);
+    p.depth = *up + *down;
+    if (!(p.on_shape.allFinite() && p.on_other.allFinite() && p.position.allFinite() &&
+          std::isfinite(p.depth))) {
+      return std::nullopt;
+    }
+    return Place<S>{p, y};
+  };
+  // A line that misses a body by rounding (on a cap's rim) is measured again a little towards
+  // `centroid`.
+  const S pulls[] = {S(0), S(1e-6), S(1e-3)};
+  // The place above y against b (the shape's surface point known if `known` is an exact outline
+  // point at y); std::nullopt where every pull misses.
   const auto measured = [&](const Vector2<S>& y0, const Vector2<S>& centroid,
                             const RegionBody<S>& b,
                             const OutlinePoint<S>* known) -> std::optional<Place<S>> {
-    for (S pull : {S(0), S(1e-6), S(1e-3)}) {
+    for (const S pull : pulls) {
       const Vector2<S> y = y0 + pull * (centroid - y0);
       const Vector3<S> at = plane.at(y);
       const std::optional<S> up = known != nullptr && known->exact && pull == S(0)
                                       ? std::optional<S>((known->on - at).dot(n))
                                       : a.extent(at, n);
-      const std::optional<S> down = b.extent(at, Vector3<S>(-n));
-      if (!up || !down) continue;
-      ManifoldPoint<S> p;
-      p.on_shape = at + *up * n;
-      p.on_other = at - *down * n;
-      p.position = S(0.5) * (p.on_shape + p.on_other);
-      p.depth = *up + *down;
-      if (!(p.on_shape.allFinite() && p.on_other.allFinite() && p.position.allFinite() &&
-            std::isfinite(p.depth))) {
-        continue;
-      }
-      return Place<S>{p, y};
+      if (std::optional<Place<S>> p = placeAt(y, at, up, b.extent(at, Vector3<S>(-n)))) return p;
     }
     return std::nullopt;
   };
@@ -403,37 +410,55 @@ ContactManifold<S> regionOfPieces(const RegionBody<S>& a,
     // deepest point): at a vertex, or inside an edge whose line has the origin on its far side
     // (at the deepest place a line supports the region and the superlevel set of the depth
     // beyond it: the edge's own line, if the place is inside an edge). Each such edge is
-    // searched by golden sections; the deepest place found is a candidate after the vertices.
+    // searched by golden sections (one new place a section: the other is kept); the deepest
+    // place found is a candidate after the vertices.
     const auto deeper = [](const Place<S>& x, const Place<S>& y) {
       return x.point.depth < y.point.depth;
     };
     std::vector<OutlinePoint<S>> rim;
     for (const Place<S>& p : places) rim.push_back({p.y, p.point.on_shape, false});
     const Vector2<S> centroid = centroidOf(rim);
-    const auto depthAt = [&](const Vector2<S>& y) -> std::optional<Place<S>> {
-      for (const RegionBody<S>* b : pieces) {
-        if (std::optional<Place<S>> p = measured(y, centroid, *b, nullptr)) return p;
+    // The place at y over any piece: the shape's line is measured once for all of them.
+    const auto depthAt = [&](const Vector2<S>& y0) -> std::optional<Place<S>> {
+      for (const S pull : pulls) {
+        const Vector2<S> y = y0 + pull * (centroid - y0);
+        const Vector3<S> at = plane.at(y);
+        const std::optional<S> up = a.extent(at, n);
+        if (!up) continue;
+        for (const RegionBody<S>* b : pieces) {
+          if (std::optional<Place<S>> p = placeAt(y, at, up, b->extent(at, Vector3<S>(-n)))) {
+            return p;
+          }
+        }
       }
       return std::nullopt;
     };
     Place<S> best = *std::max_element(places.begin(), places.end(), deeper);
+    const S golden = S(0.5) * (std::sqrt(S(5)) - S(1));
     for (std::size_t k = 0; k < places.size() && places.size() > 1; ++k) {
       const Vector2<S> y0 = places[k].y, y1 = places[(k + 1) % places.size()].y;
       if (!(cross2(Vector2<S>(y1 - y0), Vector2<S>(-y0)) < S(0))) continue;  // origin inside
-      const S golden = S(0.5) * (std::sqrt(S(5)) - S(1));
+      const auto placeAlong = [&](S t) { return depthAt(Vector2<S>(y0 + t * (y1 - y0))); };
       S lo = S(0), hi = S(1);
-      for (int it = 0; it < 48 && (hi - lo) * (y1 - y0).norm() > merge; ++it) {
-        const S t1 = hi - golden * (hi - lo), t2 = lo + golden * (hi - lo);
-        const std::optional<Place<S>> p1 = depthAt(Vector2<S>(y0 + t1 * (y1 - y0)));
-        const std::optional<Place<S>> p2 = depthAt(Vector2<S>(y0 + t2 * (y1 - y0)));
-        if (!p1 || !p2) break;
+      S t1 = hi - golden * (hi - lo), t2 = lo + golden * (hi - lo);
+      std::optional<Place<S>> p1 = placeAlong(t1), p2 = placeAlong(t2);
+      for (int it = 0; it < 48 && p1 && p2 && (hi - lo) * (y1 - y0).norm() > merge; ++it) {
         if (p1->point.depth > best.point.depth) best = *p1;
         if (p2->point.depth > best.point.depth) best = *p2;
         if (p1->point.depth >= p2->point.depth) {
           hi = t2;
+          t2 = t1, p2 = p1;
+          t1 = hi - golden * (hi - lo);
+          p1 = placeAlong(t1);
         } else {
           lo = t1;
+          t1 = t2, p1 = p2;
+          t2 = lo + golden * (hi - lo);
+          p2 = placeAlong(t2);
         }
+      }
+      for (const std::optional<Place<S>>* p : {&p1, &p2}) {
+        if (*p && (*p)->point.depth > best.point.depth) best = **p;
       }
     }
     out.distance = -best.point.depth;
