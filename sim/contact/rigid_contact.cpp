@@ -16,6 +16,7 @@
 
 #include "contact/persistent_places.h"
 #include "contact/rigid_mesh_contact.h"
+#include "contact/support_bound.h"
 
 namespace fse_sim {
 
@@ -294,7 +295,8 @@ struct RigidContactFinder::Impl {
     grid.query(a.x.array() - reach, a.x.array() + reach, near_vertices, near_triangles);
     const fcl::Transform3d X = a.transform();
     if (!near_vertices.empty()) bowlVertexContacts(a, i, X, near_vertices, margin, out);
-    for (int t : near_triangles) bowlFaceContact(a, i, X, t, margin, out);
+    const SupportBound support_bound(*a.shape);
+    for (int t : near_triangles) bowlFaceContact(a, i, X, support_bound, t, margin, out);
   }
 
   /// The bowl's vertices where its surface is convex (the rim) against the body's surface: a
@@ -332,7 +334,8 @@ struct RigidContactFinder::Impl {
   /// point is on its boundary: at a vertex (bowlVertexContacts), or at a convex edge (a rim),
   /// where the library's superellipsoid–triangle pair answers (bowlRimContact). Across a flat or
   /// concave edge, a face beside it or a vertex is at least as near.
-  void bowlFaceContact(const RigidBody& a, int i, const fcl::Transform3d& X, int t, double margin,
+  void bowlFaceContact(const RigidBody& a, int i, const fcl::Transform3d& X,
+                       const SupportBound& support_bound, int t, double margin,
                        std::vector<RigidContact>& out) const {
     const fcl::TriangleP<double>& tri = triangles[std::size_t(t)];
     const Eigen::Vector3d m = bowl->normals.col(t);
@@ -342,12 +345,7 @@ struct RigidContactFinder::Impl {
     const double s = m.dot(a.x - tri.a);
     if (s < 0 || s - a.bounding_radius > margin) return;
     const Eigen::Vector3d m_body = a.q.inverse() * m;
-    // An upper bound of the body's support without a power: its bounding box's, Σ aᵢ|mᵢ|, and
-    // where both exponents are ≥ 1 (the shape inside its ellipsoid) the ellipsoid's, ‖(aᵢ·mᵢ)‖.
-    const bool pointy = a.shape->eps1() >= 1 && a.shape->eps2() >= 1;
-    const double bound = pointy ? a.shape->radii().cwiseProduct(m_body).norm()
-                                : a.shape->radii().dot(m_body.cwiseAbs());
-    if (s - bound > margin) return;
+    if (s - support_bound(-m_body) > margin) return;
     const Eigen::Vector3d support = a.shape->supportPoint(-m_body);  // body frame
     const double h = -m_body.dot(support);
     if (s - h > margin) return;
