@@ -38,6 +38,12 @@ constexpr std::size_t kRobustFinalists = 3;
 // With a robust loss, the initial guesses' extents leave out this fraction of the points at
 // each end of each axis (outliers widen the cloud's extent).
 constexpr double kRobustTrim = 0.05;
+// With a robust loss, passes over the explained points (fitSuperquadric): a point within this
+// multiple of the requested scale of the fitted surface is explained; at most this many passes,
+// each while the cost fell by more than this fraction in the one before.
+constexpr double kInlierBand = 3;
+constexpr int kExplainedPasses = 4;
+constexpr double kPassProgress = 1e-6;
 
 // A forward-difference step for a parameter x of the scale `scale` (SciPy's '2-point' rule,
 // √ε·max(|x|, scale), which the superquadric-recovery literature's fits use).
@@ -294,6 +300,43 @@ StartResult fitFrom(const std::vector<Eigen::Vector3d>& cloud, const Superquadri
   return out;
 }
 
+// The schedule from the initial guesses: every guess for a few iterations at the first scale;
+// the best go on through every scale, and the lowest final cost wins. With a robust loss the
+// three best go on: the wide loss's ranking need not be the narrow one's (a huge shape with a
+// flat side through part of the cloud can lead at the wide scale and lose at the requested one).
+StartResult fitFromGuesses(const std::vector<Eigen::Vector3d>& cloud,
+                           const std::vector<Superquadric>& guesses, const FitOptions& options,
+                           const std::vector<double>& scales, double size, FitResult& result) {
+  std::vector<StartResult> starts;
+  for (const Superquadric& guess : guesses) {
+    starts.push_back(fitFrom(cloud, guess, options, scales.front(),
+                             std::min(kStartIterations, options.max_iterations), size));
+    result.iterations += starts.back().iterations;
+    ++result.starts;
+  }
+  std::sort(starts.begin(), starts.end(),
+            [](const StartResult& a, const StartResult& b) { return a.cost < b.cost; });
+  const std::size_t finalists = options.loss == Loss::kNone ? 1 : kRobustFinalists;
+  StartResult best;
+  for (std::size_t k = 0; k < std::min(finalists, starts.size()); ++k) {
+    StartResult r = starts[k];
+    for (const double scale : scales) {
+      r = fitFrom(cloud, r.fitted, options, scale, options.max_iterations, size);
+      result.iterations += r.iterations;
+    }
+    if (r.cost < best.cost) best = r;
+  }
+  return best;
+}
+
+// A point's residual from the fitted superquadric, as the fit measures it.
+double residualOf(const Superquadric& sq, const Eigen::Vector3d& p_W, Residual residual) {
+  fse::DistanceOptions<double> options;
+  if (residual == Residual::kRadial) options.method = fse::DistanceMethod::kRadial;
+  const Eigen::Vector3d p_S = sq.rotation.normalized().inverse() * (p_W - sq.translation);
+  return fse::pointDistance(sq.shape(), p_S, options).distance;
+}
+
 }  // namespace
 
 ResidualGradient exactResidualGradient(const fse::Superellipsoidd& shape,
@@ -404,28 +447,30 @@ FitResult fitSuperquadric(const std::vector<Eigen::Vector3d>& cloud, const FitOp
   std::vector<double> scales = {options.loss_scale * size};
   if (options.loss != Loss::kNone) scales.insert(scales.begin(), kWideScale * scales[0]);
   FitResult result;
-  // Every guess for a few iterations; the best go on, through the narrower scale, and the lowest
-  // final cost wins. With a robust loss the three best go on: the wide loss's ranking need not be
-  // the narrow one's (a huge shape with a flat side through part of the cloud can lead at the
-  // wide scale and lose at the requested one).
-  std::vector<StartResult> starts;
-  for (const Superquadric& guess : guesses) {
-    starts.push_back(fitFrom(cloud, guess, options, scales.front(),
-                             std::min(kStartIterations, options.max_iterations), size));
-    result.iterations += starts.back().iterations;
-    ++result.starts;
-  }
-  std::sort(starts.begin(), starts.end(),
-            [](const StartResult& a, const StartResult& b) { return a.cost < b.cost; });
-  const std::size_t finalists = options.loss == Loss::kNone ? 1 : kRobustFinalists;
-  StartResult best;
-  for (std::size_t k = 0; k < std::min(finalists, starts.size()); ++k) {
-    StartResult r = starts[k];
-    for (const double scale : scales) {
-      r = fitFrom(cloud, r.fitted, options, scale, options.max_iterations, size);
-      result.iterations += r.iterations;
+  StartResult best = fitFromGuesses(cloud, guesses, options, scales, size, result);
+  if (options.loss != Loss::kNone) {
+    // Passes over the points the fit explains, the guesses taken again from them alone: the
+    // cloud's outliers skew its principal axes and extents, and so every first guess. A pass's
+    // answer, polished on the whole cloud, replaces the fit where its cost there is lower, and
+    // the next pass starts from the points it explains (one pass from a far larger shape can
+    // land on another wrong one that explains more of the inliers).
+    const double band = kInlierBand * scales.back();
+    for (int pass = 0; pass < kExplainedPasses; ++pass) {
+      std::vector<Eigen::Vector3d> explained;
+      for (const Eigen::Vector3d& p : cloud) {
+        if (std::abs(residualOf(best.fitted, p, options.residual)) <= band) explained.push_back(p);
+      }
+      if (explained.size() < 4 || explained.size() == cloud.size()) break;
+      const StartResult again = fitFromGuesses(explained, initialGuesses(explained, kRobustTrim),
+                                               options, scales, size, result);
+      const StartResult polished =
+          fitFrom(cloud, again.fitted, options, scales.back(), options.max_iterations, size);
+      result.iterations += polished.iterations;
+      if (!(polished.cost < best.cost)) break;
+      const bool progressed = polished.cost < (1 - kPassProgress) * best.cost;
+      best = polished;
+      if (!progressed) break;
     }
-    if (r.cost < best.cost) best = r;
   }
   result.fitted = best.fitted;
   result.cost = best.cost;

@@ -73,8 +73,9 @@ struct FitResult {
 std::vector<Superquadric> initialGuesses(const std::vector<Eigen::Vector3d>& cloud,
                                          double trim = 0);
 
-/// Fits from each initial guess and keeps the lowest final cost. Radii are kept ≥ 1e-3 × the
-/// guess's size, exponents in [0.05, 1.95].
+/// Fits from each initial guess and keeps the lowest final cost; with a robust loss, then again
+/// from the points the fit explains, while that lowers the cost (docs/fitting.md → "The fit").
+/// Radii are kept ≥ 1e-3 × the guess's size, exponents in [0.05, 1.95].
 /// @throws std::invalid_argument as initialGuesses, or for a non-finite point (naming it).
 FitResult fitSuperquadric(const std::vector<Eigen::Vector3d>& cloud,
                           const FitOptions& options = {});
