@@ -62,6 +62,11 @@ template <typename S>
 struct ContactManifold {
   Vector3<S> normal;  ///< unit, world, from the superellipsoid towards the other geometry
   S distance;         ///< the pair's signed distance (< 0: overlapping by −distance)
+  /// The pair's witness points (world), the superellipsoid's and the other geometry's: apart,
+  /// the nearest points; overlapping, the deepest points along the normal. What `distance`
+  /// (signed, with nearest points) reports for the pair, so a caller that takes a manifold
+  /// needs no distance query beside it.
+  Vector3<S> on_shape, on_other;
   S patch_tolerance;  ///< the tolerance used
   /// The region's outline, counter-clockwise about `normal`, on the contact plane. One point
   /// where the region is a point (the two caps meet in less than the tolerance).

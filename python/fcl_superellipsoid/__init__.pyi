@@ -92,6 +92,8 @@ class ManifoldPlaces(NamedTuple):
 class ContactManifold(NamedTuple):
     normal: npt.NDArray[np.float64]
     distance: float
+    point1: npt.NDArray[np.float64]
+    point2: npt.NDArray[np.float64]
     patch_tolerance: float
     polygon: ManifoldPlaces
     points: ManifoldPlaces

@@ -114,8 +114,10 @@ py::list contactManifolds(const std::shared_ptr<Geometry>& a, const py::handle& 
     const Eigen::Vector3d normal = shape_first ? m.normal : Eigen::Vector3d(-m.normal);
     std::vector<ManifoldPoint<double>> polygon = m.polygon;
     if (!shape_first) std::reverse(polygon.begin(), polygon.end());
-    out.append(manifold_type(normal, m.distance, m.patch_tolerance, placesOf(polygon, shape_first),
-                             placesOf(m.points, shape_first)));
+    const Eigen::Vector3d& point1 = shape_first ? m.on_shape : m.on_other;
+    const Eigen::Vector3d& point2 = shape_first ? m.on_other : m.on_shape;
+    out.append(manifold_type(normal, m.distance, point1, point2, m.patch_tolerance,
+                             placesOf(polygon, shape_first), placesOf(m.points, shape_first)));
   }
   return out;
 }
@@ -129,9 +131,12 @@ void bindManifoldQueries(py::module_& m) {
       "(k, 3) on shape 1's and shape 2's surfaces along the normal there, depth (k,): their "
       "overlap along the normal (< 0: apart, by at most the patch tolerance).");
   manifold_type = resultType(
-      m, "ContactManifold", {"normal", "distance", "patch_tolerance", "polygon", "points"},
+      m, "ContactManifold",
+      {"normal", "distance", "point1", "point2", "patch_tolerance", "polygon", "points"},
       "A contact region: the unit normal from shape 1 to shape 2, the region's signed distance "
-      "(< 0: overlapping), the patch tolerance used, its outline (ManifoldPlaces, "
+      "(< 0: overlapping), its witnesses on shape 1 and shape 2 (distance()'s nearest points "
+      "for a pair of shapes; a mesh region's deepest place), the patch tolerance used, its "
+      "outline (ManifoldPlaces, "
       "counter-clockwise about the normal) and at most max_points reduced places "
       "(ManifoldPlaces, the deepest first).");
 

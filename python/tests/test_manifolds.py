@@ -73,6 +73,30 @@ def test_the_order_of_the_shapes_turns_the_normal_and_swaps_the_points():
     assert polygon_area(b.polygon, b.normal) == pytest.approx(polygon_area(a.polygon, a.normal))
 
 
+def test_the_witnesses_are_the_distances_nearest_points():
+    shape = fse.Superellipsoid((0.5, 0.4, 0.3), (0.3, 0.8))
+    rng = np.random.default_rng(5)
+    others = (fse.Sphere(0.3), fse.Box(0.6, 0.5, 0.4), fse.Superellipsoid((0.4, 0.3, 0.3), (1.2, 0.4)))
+    checked = 0
+    for other in others:
+        for k in range(10):
+            pose = (np.eye(3), rng.uniform(-0.1, 0.1, 3) + [0.0, 0.0, 0.55 + 0.1 * k / 10])
+            d = fse.distance(shape, None, other, pose)
+            regions = fse.contact_manifolds(shape, None, other, pose, patch_tolerance=0.2)
+            if not regions:
+                continue
+            [m] = regions
+            assert m.distance == d.distance
+            np.testing.assert_array_equal(m.point1, d.point1)
+            np.testing.assert_array_equal(m.point2, d.point2)
+            # And in the other order.
+            [r] = fse.contact_manifolds(other, pose, shape, None, patch_tolerance=0.2)
+            np.testing.assert_array_equal(r.point1, d.point2)
+            np.testing.assert_array_equal(r.point2, d.point1)
+            checked += 1
+    assert checked >= 20
+
+
 def test_apart_no_region_and_a_sphere_one():
     shape = fse.Superellipsoid((0.5, 0.4, 0.3), (0.5, 0.5))
     assert fse.contact_manifolds(shape, None, fse.Sphere(0.2), (np.eye(3), [0.8, 0, 0])) == []

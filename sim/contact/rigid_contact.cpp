@@ -11,6 +11,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <thread>
 #include <unordered_map>
 
@@ -193,12 +194,28 @@ struct RigidContactFinder::Impl {
                  PairPlaces* kept, std::vector<RigidContact>& out) const {
     const RigidBody& a = bodies[std::size_t(i)];
     const RigidBody& b = bodies[std::size_t(j)];
-    fcl::DistanceRequestd request;
-    request.enable_nearest_points = true;
-    request.enable_signed_distance = true;
-    fcl::DistanceResultd result;
-    const double d =
-        fse::distance(a.shape.get(), a.transform(), b.shape.get(), b.transform(), request, result);
+    // The pair's signed distance and witnesses: where the pair keeps places, from its contact
+    // region, which reports them as the distance query would (one pair query, not two).
+    double d;
+    Eigen::Vector3d w_a, w_b;
+    std::optional<fse::ContactManifold<double>> region;
+    const fse::ManifoldOptions<double> options = regionOptions(a, b, skin);
+    if (kept != nullptr) {
+      region = fse::contactManifold(*a.shape, a.transform(), *b.shape, b.transform(), options,
+                                    kept->warm);
+      d = region->distance;
+      w_a = region->on_shape;
+      w_b = region->on_other;
+    } else {
+      fcl::DistanceRequestd request;
+      request.enable_nearest_points = true;
+      request.enable_signed_distance = true;
+      fcl::DistanceResultd result;
+      d = fse::distance(a.shape.get(), a.transform(), b.shape.get(), b.transform(), request,
+                        result);
+      w_a = result.nearest_points[0];
+      w_b = result.nearest_points[1];
+    }
     if (!(d <= margin)) return;
     // The contact normal: of the candidate directions u, the one whose gap (how far a's
     // nearest point along u lies beyond b's farthest) is largest; the true normal's gap is the
@@ -207,7 +224,6 @@ struct RigidContactFinder::Impl {
     // the witnesses, and both frames' axes (the faces of box-like shapes, where the witnesses
     // are one of many pairs: a support point on a face as flat as ε = 0.1's moves far along it,
     // into the rounded edge, for a tiny turn of the direction).
-    const Eigen::Vector3d w_a = result.nearest_points[0], w_b = result.nearest_points[1];
     Eigen::Vector3d n = b.q * b.shape->normal(b.q.inverse() * (w_b - b.x));
     double best = gapAlong(a, b, n);
     auto consider = [&](const Eigen::Vector3d& u) {
@@ -236,7 +252,9 @@ struct RigidContactFinder::Impl {
     const Eigen::Vector3d on_b =
         b.toWorld(b.shape->supportPoint(b.q.inverse() * n)) + (best - d) * n;
     const std::size_t before = out.size();
-    if (kept != nullptr) regionContacts(a, i, b, j, n, skin, *kept, out);
+    if (region) {
+      updatePlaces(a, i, b, j, *region, n, options.patch_tolerance, options.max_points, *kept, out);
+    }
     const bool has_places = out.size() > before;
     out.push_back(contactAt(a, i, &b, j, d, on_a, on_b, n));
     out.back().follows_support = true;
@@ -244,20 +262,17 @@ struct RigidContactFinder::Impl {
     out.back().turning_only = has_places;
   }
 
-  /// The pair's contact region from the library (fse::contactManifold, a as the shape, warm-
-  /// started from the pair's last one; the outline unrefined: only its reduced places are
-  /// used), whose places update the pair's persistent places (contact/persistent_places.h); a
-  /// contact for each. The patch tolerance is 1e-3 × the smaller body's size plus the skin: a
-  /// resting pair is held the skin apart, and its region must reach across that.
-  static void regionContacts(const RigidBody& a, int i, const RigidBody& b, int j,
-                             const Eigen::Vector3d& n, double skin, PairPlaces& kept,
-                             std::vector<RigidContact>& out) {
+  /// The options of a pair's contact region from the library (fse::contactManifold, a as the
+  /// shape, warm-started from the pair's last one), whose places update the pair's persistent
+  /// places (contact/persistent_places.h), a contact each: the outline unrefined (only its
+  /// reduced places are used); the patch tolerance 1e-3 × the smaller body's size plus the skin
+  /// (a resting pair is held the skin apart, and its region must reach across that).
+  static fse::ManifoldOptions<double> regionOptions(const RigidBody& a, const RigidBody& b,
+                                                    double skin) {
     fse::ManifoldOptions<double> options;
     options.patch_tolerance = 1e-3 * std::min(a.shape->size(), b.shape->size()) + skin;
     options.outline_area_tolerance = 1;
-    const fse::ContactManifold<double> region =
-        fse::contactManifold(*a.shape, a.transform(), *b.shape, b.transform(), options, kept.warm);
-    updatePlaces(a, i, b, j, region, n, options.patch_tolerance, options.max_points, kept, out);
+    return options;
   }
 
   /// Vertices of body i against body j's implicit surface.

@@ -290,6 +290,8 @@ ContactManifold<S> regionOfPieces(const RegionBody<S>& a,
   ContactManifold<S> out;
   out.normal = hit.normal.normalized();
   out.distance = hit.distance;
+  out.on_shape = hit.on_shape;
+  out.on_other = hit.on_other;
   out.patch_tolerance = tolerance;
   const S thickness = tolerance - hit.distance;
   if (!(thickness > S(0))) return out;  // apart by more than the tolerance: no region
@@ -462,6 +464,8 @@ ContactManifold<S> regionOfPieces(const RegionBody<S>& a,
       }
     }
     out.distance = -best.point.depth;
+    out.on_shape = best.point.on_shape;
+    out.on_other = best.point.on_other;
     places.push_back(best);
   }
   out.points = reduce(places, options.max_points, tolerance, merge);

@@ -51,6 +51,8 @@ ContactManifold<S> pointRegion(const PointDistanceResult<S>& at, const Vector3<S
   ContactManifold<S> m;
   m.normal = at.normal;
   m.distance = at.distance;
+  m.on_shape = at.nearest_point;
+  m.on_other = point;
   m.patch_tolerance = tolerance;
   m.polygon.push_back(
       place(at.nearest_point, point, Vector3<S>(S(0.5) * (at.nearest_point + point)), at.normal));

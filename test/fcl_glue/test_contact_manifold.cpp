@@ -680,6 +680,51 @@ TEST(ManifoldWarmStart, SameAnswerAsAFreshCall) {
   EXPECT_LE(manifoldDifference(fresh, warmed), 1e-11 * size);
 }
 
+// --- The pair's witnesses ---------------------------------------------------------------------
+
+// The manifold's distance and witness points are what the signed distance query reports for the
+// pair, so a simulator that takes a manifold needs no distance query beside it: against every
+// partner with a region, apart (within the patch tolerance and beyond it) and overlapping. And
+// by construction: the shape's witness on its surface (the long-double gauge), the two witnesses
+// |distance| apart.
+TEST(ManifoldWitnesses, AreTheSignedDistancesNearestPoints) {
+  const Superellipsoid<double> shape(0.5, 0.4, 0.3, 0.3, 0.8);
+  std::vector<std::shared_ptr<fcl::CollisionGeometry<double>>> others = {
+      std::make_shared<Superellipsoid<double>>(0.6, 0.5, 0.3, 0.2, 1.4),
+      std::make_shared<fcl::Box<double>>(0.8, 0.6, 0.5),
+      std::make_shared<fcl::Sphere<double>>(0.35),
+      std::make_shared<fcl::Ellipsoid<double>>(0.4, 0.3, 0.2),
+      std::make_shared<fcl::Capsule<double>>(0.2, 0.6),
+      std::make_shared<fcl::Cylinder<double>>(0.3, 0.5),
+      std::make_shared<fcl::Cone<double>>(0.3, 0.6),
+      std::make_shared<fcl::Halfspace<double>>(Vector3<double>(0.2, -0.3, 1).normalized(), -0.1)};
+  std::mt19937 rng(404);
+  int apart = 0, overlapping = 0;
+  for (const auto& other : others) {
+    for (int k = 0; k < 30; ++k) {
+      const fcl::Transform3d X_WS = randomPose<double>(rng, 0.3);
+      const fcl::Transform3d X_WO = randomPose<double>(rng, 0.3);
+      fcl::DistanceRequestd request;
+      request.enable_signed_distance = true;
+      request.enable_nearest_points = true;
+      fcl::DistanceResultd result;
+      const double d = fcl_superellipsoid::distance(&shape, X_WS, other.get(), X_WO, request, result);
+      const ContactManifold<double> m = contactManifold(shape, X_WS, *other, X_WO);
+      SCOPED_TRACE(::testing::Message() << "other " << other->getNodeType() << ", pose " << k
+                                        << ", distance " << d);
+      (d >= 0 ? apart : overlapping) += 1;
+      EXPECT_EQ(m.distance, d);
+      EXPECT_EQ(m.on_shape, result.nearest_points[0]);
+      EXPECT_EQ(m.on_other, result.nearest_points[1]);
+      const Vector3<double> on_shape = X_WS.inverse() * m.on_shape;
+      EXPECT_NEAR(double(referenceGauge(shape, on_shape)), 1.0, 1e-12);
+      EXPECT_NEAR((m.on_shape - m.on_other).norm(), std::abs(d), 1e-12);
+    }
+  }
+  EXPECT_GE(apart, 40);
+  EXPECT_GE(overlapping, 40);
+}
+
 // --- Partners far larger or smaller than the shape -------------------------------------------
 
 template <typename S>
