@@ -76,7 +76,11 @@ def test_the_order_of_the_shapes_turns_the_normal_and_swaps_the_points():
 def test_the_witnesses_are_the_distances_nearest_points():
     shape = fse.Superellipsoid((0.5, 0.4, 0.3), (0.3, 0.8))
     rng = np.random.default_rng(5)
-    others = (fse.Sphere(0.3), fse.Box(0.6, 0.5, 0.4), fse.Superellipsoid((0.4, 0.3, 0.3), (1.2, 0.4)))
+    others = (
+        fse.Sphere(0.3),
+        fse.Box(0.6, 0.5, 0.4),
+        fse.Superellipsoid((0.4, 0.3, 0.3), (1.2, 0.4)),
+    )
     checked = 0
     for other in others:
         for k in range(10):

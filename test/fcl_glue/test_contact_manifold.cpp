@@ -708,10 +708,11 @@ TEST(ManifoldWitnesses, AreTheSignedDistancesNearestPoints) {
       request.enable_signed_distance = true;
       request.enable_nearest_points = true;
       fcl::DistanceResultd result;
-      const double d = fcl_superellipsoid::distance(&shape, X_WS, other.get(), X_WO, request, result);
+      const double d =
+          fcl_superellipsoid::distance(&shape, X_WS, other.get(), X_WO, request, result);
       const ContactManifold<double> m = contactManifold(shape, X_WS, *other, X_WO);
-      SCOPED_TRACE(::testing::Message() << "other " << other->getNodeType() << ", pose " << k
-                                        << ", distance " << d);
+      SCOPED_TRACE(::testing::Message()
+                   << "other " << other->getNodeType() << ", pose " << k << ", distance " << d);
       (d >= 0 ? apart : overlapping) += 1;
       EXPECT_EQ(m.distance, d);
       EXPECT_EQ(m.on_shape, result.nearest_points[0]);
