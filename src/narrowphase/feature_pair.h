@@ -73,8 +73,14 @@ constexpr int kGjkIterations = 64;
 constexpr double kGjkTightGap = 1e-10;
 constexpr int kGjkTightIterations = 256;
 
-/// kNearTouching × size: how deep an overlap has to be for the pairs to trust its sign.
+/// kNearTouching × size: how deep libccd's MPR start has to find an overlap for the pairs to
+/// trust its sign.
 constexpr double kNearTouching = 1e-3;
+/// A certified depth (the start-free candidates', depth_candidates.h) is the answer where it is
+/// deeper than this × size and than the type's rounding: the certificate proves the overlap (a
+/// ball about the origin inside A − B), so only a depth within rounding of 0 leaves the sign to
+/// the separated search. It is the pairs' accuracy target.
+constexpr double kCertifiedDepth = 1e-9;
 template <typename S>
 S nearTouching(const ShapePair<S>& pair, S other_size) {
   return S(kNearTouching) * std::max(pair.shape->size(), other_size);
@@ -95,8 +101,8 @@ S nearTouching(const ShapePair<S>& pair, S other_size) {
 /// The stages, in order: where our GJK (gjk.h, on the superellipsoid's exact support points
 /// and the other's) finds the shapes apart, `separated` from its witnesses; if nothing is
 /// certified, again from a GJK run to a tight gap. Where GJK finds them touching or
-/// overlapping, `startFree`: a certified depth above kNearTouching × size is the answer, with
-/// no libccd run. Else libccd's start: `separated` where the shapes are within kNearTouching ×
+/// overlapping, `startFree`: a certified depth (kCertifiedDepth) is the answer, with no libccd
+/// run. Else libccd's start: `separated` where the shapes are within kNearTouching ×
 /// size of touching (the exact answer then decides the sign), else, or if nothing is certified,
 /// `startFree` if it has not run, then `overlap`.
 template <typename S, typename Features>
@@ -104,6 +110,9 @@ std::optional<PairHit<S>> featurePair(const ShapePair<S>& pair, const Features& 
   auto shape_support_point = [&pair](const Vector3<S>& u) { return shapeSupport(pair, u); };
   auto other_support_point = [&features](const Vector3<S>& u) { return features.supportPoint(u); };
   const S near = nearTouching(pair, features.size());
+  const S certified_depth =
+      std::max(S(kCertifiedDepth), S(64) * std::numeric_limits<S>::epsilon()) *
+      std::max(pair.shape->size(), features.size());
   bool start_free_ran = false;
   for (const auto& [gap, iterations] : {std::pair<S, int>{S(kGjkRelativeGap), kGjkIterations},
                                         std::pair<S, int>{S(kGjkTightGap), kGjkTightIterations}}) {
@@ -113,7 +122,7 @@ std::optional<PairHit<S>> featurePair(const ShapePair<S>& pair, const Features& 
     if (!apart) {  // touching or overlapping (or not settled): a tighter gap will not help
       start_free_ran = true;
       const std::optional<PairHit<S>> hit = features.startFree();
-      if (hit && hit->distance < -near) return hit;
+      if (hit && hit->distance < -certified_depth) return hit;
       break;
     }
     const Vector3<S> normal = (apart->on_b - apart->on_a).normalized();

@@ -290,10 +290,10 @@ TEST(ShapePairs, ShapesWithFlatFacesAndEdgesMatchTheConstruction) {
 /// enumeration is never above the pattern search (a check of the reference); and ours is the
 /// enumerated depth to 1e-9 × size (the worst per partner is printed). The environment variables
 /// PREFIX_TRIALS (default `trials`) and PREFIX_SEED (default 41) give a larger sample. The
-/// superellipsoid's exponents are drawn from `exponents`.
+/// superellipsoid's exponents are drawn from `exponents`; `gap(rng)` draws the gap.
+template <typename Gap>
 void expectTheEnumeratedDepth(
-    const std::vector<std::string>& names, const std::string& prefix,
-    std::uniform_real_distribution<double> gap,
+    const std::vector<std::string>& names, const std::string& prefix, Gap gap,
     const std::function<LD(const std::function<LD(const V3&)>&, const fcl::CollisionGeometryd&,
                            const fcl::Transform3d&)>& enumerated_depth,
     int default_trials = 20, std::pair<double, double> exponents = {0.1, 1.9}) {
@@ -352,6 +352,24 @@ TEST(ShapePairs, PolytopeOverlapsAgainstTheEnumeratedDepth) {
 TEST(ShapePairs, RoundOverlapsAgainstTheEnumeratedDepth) {
   expectTheEnumeratedDepth({"cylinder", "cone"}, "FSE_ROUND",
                            std::uniform_real_distribution<double>(-1.0, -0.01), roundDepth);
+}
+
+// Overlaps shallower than 1e-3 × size, where resting bodies are (1e-8 to 1e-3 × size, spread
+// evenly in the logarithm), on every flat and round partner at each of its features (faces, sides
+// and discs too) and exponents 0.1–1.9: the start-free candidates' certified depth is the answer
+// there too (feature_pair.h), against the enumerations.
+TEST(ShapePairs, ShallowOverlapsAgainstTheEnumeratedDepth) {
+  const auto gap = [](std::mt19937& rng) {
+    return -std::pow(10.0, std::uniform_real_distribution<double>(-7.0, -2.0)(rng));
+  };
+  expectTheEnumeratedDepth({"box", "convex", "triangle", "box face", "triangle face"},
+                           "FSE_SHALLOW_POLYTOPE", gap,
+                           [](const auto& h_a, const auto& g, const auto& X) {
+                             return polytopeDepth(h_a, polytopeVertices(g, X));
+                           });
+  expectTheEnumeratedDepth(
+      {"cylinder", "cone", "cylinder side", "cylinder disc", "cone side", "cone apex"},
+      "FSE_SHALLOW_ROUND", gap, roundDepth);
 }
 
 // Rounded superellipsoids (exponents ≤ 1), whose rolling ball certifies many of these overlaps
