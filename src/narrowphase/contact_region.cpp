@@ -70,16 +70,20 @@ Vector3<S> capExtreme(const RegionBody<S>& body, const Vector3<S>& u, const Vect
   const Vector3<S> w = m.cross(u);
   const auto newton = [&](Vector3<S> x) -> std::optional<Vector3<S>> {
     x -= (x.dot(m) - c) * m;
-    for (int it = 0; it < 12 && body.gauge(x, value, gradient, hessian); ++it) {
+    for (int it = 0; it < 24 && body.gauge(x, value, gradient, hessian); ++it) {
       const Vector3<S> hw = hessian * w;
       const S j11 = gradient.dot(u), j12 = gradient.dot(w), j21 = hw.dot(u), j22 = hw.dot(w);
       const S f1 = value - S(1), f2 = gradient.dot(w);
       const S det = j11 * j22 - j12 * j21;
       if (!(std::abs(det) > S(0)) || !(j11 > S(0))) break;
       const S da = -(j22 * f1 - j12 * f2) / det, db = -(j11 * f2 - j21 * f1) / det;
-      if (!(std::abs(da) + std::abs(db) <= S(0.5) * size)) break;  // far off: not this one
-      x += da * u + db * w;
-      if (std::abs(da) + std::abs(db) <= S(256) * eps * size) {
+      const S length = std::abs(da) + std::abs(db);
+      if (!std::isfinite(length)) break;
+      // Along a flat side the outline's curvature is small and a step long: it is taken at
+      // most half the size at a time.
+      const S shortened = std::min(S(1), S(0.5) * size / length);
+      x += shortened * (da * u + db * w);
+      if (length <= S(256) * eps * size) {
         // Converged; where the gradient still leaves the plane of u and m, x is near a crease
         // and the steps only shrank.
         if (std::abs(f2) <= S(1e4) * eps * gradient.norm()) return x;
