@@ -416,56 +416,70 @@ ContactManifold<S> regionOfPieces(const RegionBody<S>& a,
     // deepest point): at a vertex, or inside an edge whose line has the origin on its far side
     // (at the deepest place a line supports the region and the superlevel set of the depth
     // beyond it: the edge's own line, if the place is inside an edge). Each such edge is
-    // searched by golden sections (one new place a section: the other is kept); the deepest
-    // place found is a candidate after the vertices.
+    // bisected on the sign of the depth's slope along it, which locates its deepest place to
+    // rounding (the depth itself is flat there: its values would locate it only to about √ε ×
+    // the size); that place is a candidate after the vertices.
     const auto deeper = [](const Place<S>& x, const Place<S>& y) {
       return x.point.depth < y.point.depth;
     };
     std::vector<OutlinePoint<S>> rim;
     for (const Place<S>& p : places) rim.push_back({p.y, p.point.on_shape, false});
     const Vector2<S> centroid = centroidOf(rim);
-    // The place at y over any piece: the shape's line is measured once for all of them.
-    const auto depthAt = [&](const Vector2<S>& y0) -> std::optional<Place<S>> {
+    // The place at y over any piece (the shape's line is measured once for all of them), with
+    // the slope of the depth there along the plane's direction `along`: the shape's surface
+    // rises by −(∇G·along)/(∇G·n) and the piece's falls by (n_P·along)/(n_P·n) (n_P its plane's
+    // normal); 0 where either normal is unknown.
+    struct RimPlace {
+      Place<S> place;
+      S slope;
+    };
+    std::vector<Vector3<S>> piece_corners;
+    const auto placeOnRim = [&](const Vector2<S>& y0,
+                                const Vector3<S>& along) -> std::optional<RimPlace> {
       for (const S pull : pulls) {
         const Vector2<S> y = y0 + pull * (centroid - y0);
         const Vector3<S> at = plane.at(y);
         const std::optional<S> up = a.extent(at, n);
         if (!up) continue;
         for (const RegionBody<S>* b : pieces) {
-          if (std::optional<Place<S>> p = placeAt(y, at, up, b->extent(at, Vector3<S>(-n)))) {
-            return p;
+          std::optional<Place<S>> p = placeAt(y, at, up, b->extent(at, Vector3<S>(-n)));
+          if (!p) continue;
+          S slope = S(0);
+          S value;
+          Vector3<S> gradient;
+          Matrix3<S> hessian;
+          if (a.gauge(p->point.on_shape, value, gradient, hessian) && b->corners(piece_corners) &&
+              piece_corners.size() == 3) {
+            const Vector3<S> n_p = (piece_corners[1] - piece_corners[0])
+                                       .cross(Vector3<S>(piece_corners[2] - piece_corners[0]));
+            const S rise = -gradient.dot(along) / gradient.dot(n);
+            const S fall = n_p.dot(along) / n_p.dot(n);
+            if (std::isfinite(rise) && std::isfinite(fall)) slope = rise + fall;
           }
+          return RimPlace{*p, slope};
         }
       }
       return std::nullopt;
     };
     Place<S> best = *std::max_element(places.begin(), places.end(), deeper);
-    const S golden = S(0.5) * (std::sqrt(S(5)) - S(1));
     for (std::size_t k = 0; k < places.size() && places.size() > 1; ++k) {
       const Vector2<S> y0 = places[k].y, y1 = places[(k + 1) % places.size()].y;
       if (!(cross2(Vector2<S>(y1 - y0), Vector2<S>(-y0)) < S(0))) continue;  // origin inside
-      const auto placeAlong = [&](S t) { return depthAt(Vector2<S>(y0 + t * (y1 - y0))); };
+      const Vector3<S> along = plane.at(y1) - plane.at(y0);
+      // The slope is ≥ 0 left of the deepest place and ≤ 0 right of it.
       S lo = S(0), hi = S(1);
-      S t1 = hi - golden * (hi - lo), t2 = lo + golden * (hi - lo);
-      std::optional<Place<S>> p1 = placeAlong(t1), p2 = placeAlong(t2);
-      for (int it = 0; it < 48 && p1 && p2 && (hi - lo) * (y1 - y0).norm() > merge; ++it) {
-        if (p1->point.depth > best.point.depth) best = *p1;
-        if (p2->point.depth > best.point.depth) best = *p2;
-        if (p1->point.depth >= p2->point.depth) {
-          hi = t2;
-          t2 = t1, p2 = p1;
-          t1 = hi - golden * (hi - lo);
-          p1 = placeAlong(t1);
+      std::optional<RimPlace> last;
+      for (int it = 0; it < 64 && (hi - lo) * (y1 - y0).norm() > merge; ++it) {
+        const S t = S(0.5) * (lo + hi);
+        last = placeOnRim(Vector2<S>(y0 + t * (y1 - y0)), along);
+        if (!last) break;
+        if (last->slope > S(0)) {
+          lo = t;
         } else {
-          lo = t1;
-          t1 = t2, p1 = p2;
-          t2 = lo + golden * (hi - lo);
-          p2 = placeAlong(t2);
+          hi = t;
         }
       }
-      for (const std::optional<Place<S>>* p : {&p1, &p2}) {
-        if (*p && (*p)->point.depth > best.point.depth) best = **p;
-      }
+      if (last && last->place.point.depth > best.point.depth) best = last->place;
     }
     out.distance = -best.point.depth;
     out.on_shape = best.point.on_shape;
