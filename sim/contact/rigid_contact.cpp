@@ -352,9 +352,22 @@ struct RigidContactFinder::Impl {
   void bowlFaceContact(const RigidBody& a, int i, const fcl::Transform3d& X,
                        const SupportBound& support_bound, int t, double margin,
                        std::vector<RigidContact>& out) const {
-    const fcl::TriangleP<double>& tri = triangles[std::size_t(t)];
     const Eigen::Vector3d m = bowl->normals.col(t);
+    // Culled first, from the triangle's centroid (in its plane to rounding, so with a slack for
+    // the tests below that measure from a corner): a body whose centre is behind the plane or
+    // farther in front than its bounding radius and the margin; a face whose contact would have
+    // its foot (below) within the margin of the triangle, or a rim that comes within the margin
+    // of the body, has the projection of the body's centre on its plane within the bounding
+    // radius of the triangle grown by the margin.
+    const Eigen::Vector3d r = a.x - bowl->centroids.col(t);
+    const double along = m.dot(r);
+    const double slack = bowl->centroid_slack;
+    if (along < -slack || along - a.bounding_radius > margin + slack) return;
+    const double reach = a.bounding_radius + bowl->radii[std::size_t(t)] +
+                         bowl->corner_factors[std::size_t(t)] * margin;
+    if (r.squaredNorm() - along * along > reach * reach) return;
     if (m.squaredNorm() == 0) return;
+    const fcl::TriangleP<double>& tri = triangles[std::size_t(t)];
     // A body's centre behind a face is on the solid's side of it: that face is the far side
     // of a wall (the bowl's outside, seen from its cavity); the near side answers.
     const double s = m.dot(a.x - tri.a);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -130,12 +131,30 @@ StaticMesh makeBowl(const BowlSpec& spec) {
 void computeFaceData(StaticMesh& mesh) {
   const std::size_t n = mesh.triangles.size();
   mesh.normals.setZero(3, long(n));
+  mesh.centroids.setZero(3, long(n));
+  mesh.radii.assign(n, 0.0);
+  mesh.corner_factors.assign(n, std::numeric_limits<double>::infinity());
+  mesh.centroid_slack =
+      1e-12 * (mesh.vertices.cols() > 0 ? mesh.vertices.colwise().norm().maxCoeff() : 0.0);
   for (std::size_t t = 0; t < n; ++t) {
     const auto& v = mesh.triangles[t];
-    const Eigen::Vector3d m = (mesh.vertices.col(v[1]) - mesh.vertices.col(v[0]))
-                                  .cross(mesh.vertices.col(v[2]) - mesh.vertices.col(v[0]));
+    const Eigen::Vector3d corners[3] = {mesh.vertices.col(v[0]), mesh.vertices.col(v[1]),
+                                        mesh.vertices.col(v[2])};
+    const Eigen::Vector3d m = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
     const double length = m.norm();
     if (length > 0) mesh.normals.col(long(t)) = m / length;
+    const Eigen::Vector3d centroid = (corners[0] + corners[1] + corners[2]) / 3;
+    mesh.centroids.col(long(t)) = centroid;
+    double factor = 1;
+    for (int k = 0; k < 3; ++k) {
+      mesh.radii[t] = std::max(mesh.radii[t], (corners[k] - centroid).norm());
+      const Eigen::Vector3d e1 = (corners[(k + 1) % 3] - corners[k]).normalized();
+      const Eigen::Vector3d e2 = (corners[(k + 2) % 3] - corners[k]).normalized();
+      // sin(α/2) = ‖e1 − e2‖/2 for unit edges e1, e2 at angle α.
+      factor = std::max(factor, 2 / (e1 - e2).norm());
+    }
+    // A degenerate triangle (a zero angle, or no normal) is never culled.
+    if (length > 0 && std::isfinite(factor)) mesh.corner_factors[t] = factor;
   }
   // Each edge (low, high vertex) with the triangles on it and their third vertices.
   struct Side {

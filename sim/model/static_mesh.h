@@ -27,6 +27,15 @@ struct StaticMesh {
   /// Per vertex: on a triangle with a convex edge. Elsewhere (a valley of the surface) the
   /// faces round a vertex reach at least as far as the vertex does.
   std::vector<char> convex_vertex;
+  /// Per triangle, for culling: its centroid, the largest distance from it to a corner, and the
+  /// largest 1/sin(α/2) over its corners' angles α. The triangle grown by δ in its plane (each
+  /// edge's line moved out by δ) has its corners δ/sin(α/2) farther out, so every point of it
+  /// lies within radius + δ·corner_factor of the centroid.
+  Eigen::Matrix3Xd centroids;
+  std::vector<double> radii, corner_factors;
+  /// How far a centroid may lie off its triangle's plane by rounding (1e-12 × the largest
+  /// vertex norm, a thousand times more than it does).
+  double centroid_slack = 0;
 };
 
 /// Fills a mesh's normals, convex_edge and convex_vertex from its vertices and triangles.

@@ -51,25 +51,32 @@ struct OutlinePoint {
 /// A smooth body (RegionBody::gauge) is solved by Newton's method on the optimality conditions
 /// instead: on the base x = x0 + a·u + b·w (w = m × u), G(x) = 1 and ∇G(x)·w = 0 (the gradient
 /// in the plane of u and m), with ∇G·u > 0. It starts from `warm` if given (a neighbouring
-/// direction's answer), else (or where that fails) from where the ray from `deepest` (the
-/// body's point farthest along m), taken to the base, along u leaves the body. Where neither
-/// converges (near a crease of an exponent > 1 the extreme point is a corner of the outline, and
-/// the gradient turns at once), the search on θ decides.
+/// direction's answer, or the last call's), whose answer stands where its normal also leans
+/// towards m (∇G·m > 0: then it is the extreme whatever the support along u). Else (or where
+/// that fails) the support along u decides whether the cap holds it, and Newton starts from
+/// where the ray from `deepest` (the body's point farthest along m), taken to the base, along u
+/// leaves the body. Where neither converges (near a crease of an exponent > 1 the extreme point
+/// is a corner of the outline, and the gradient turns at once), the search on θ decides.
 template <typename S>
 Vector3<S> capExtreme(const RegionBody<S>& body, const Vector3<S>& u, const Vector3<S>& m, S c,
                       bool& exact, const Vector3<S>* warm, const Vector3<S>& deepest) {
-  Vector3<S> p_lo = body.support(u);
-  S g_lo = p_lo.dot(m) - c;
-  exact = g_lo < S(0);
-  if (!exact) return p_lo;
   const S size = body.size();
   const S eps = std::numeric_limits<S>::epsilon();
   S value;
   Vector3<S> gradient;
   Matrix3<S> hessian;
   const Vector3<S> w = m.cross(u);
-  const auto newton = [&](Vector3<S> x) -> std::optional<Vector3<S>> {
+  // Newton from x; `certify`: the answer must also have ∇G·m > 0, which makes it the cap's
+  // extreme along u whatever the support along u (with the normal ν = cos θ·u + sin θ·m,
+  // θ in (0, π/2), every y of the cap has u·y = (ν·y − sin θ·m·y)/cos θ ≤ u·x). A step whose
+  // convergence is clearly quadratic (at most 1e-3 of the one before) and whose successor would
+  // be below the threshold (C·step² with C = step/previous²) ends the iteration at once, if it
+  // is below 1e-6 × the size (in float the threshold itself is larger): the evaluation that would
+  // only confirm it is saved.
+  const auto newton = [&](Vector3<S> x, bool certify) -> std::optional<Vector3<S>> {
     x -= (x.dot(m) - c) * m;
+    const S threshold = S(256) * eps * size;
+    S previous = S(0);
     for (int it = 0; it < 24 && body.gauge(x, value, gradient, hessian); ++it) {
       const Vector3<S> hw = hessian * w;
       const S j11 = gradient.dot(u), j12 = gradient.dot(w), j21 = hw.dot(u), j22 = hw.dot(w);
@@ -83,18 +90,32 @@ Vector3<S> capExtreme(const RegionBody<S>& body, const Vector3<S>& u, const Vect
       // most half the size at a time.
       const S shortened = std::min(S(1), S(0.5) * size / length);
       x += shortened * (da * u + db * w);
-      if (length <= S(256) * eps * size) {
+      const bool upward = !certify || gradient.dot(m) > S(0);
+      if (length <= threshold) {
         // Converged; where the gradient still leaves the plane of u and m, x is near a crease
         // and the steps only shrank.
-        if (std::abs(f2) <= S(1e4) * eps * gradient.norm()) return x;
+        if (std::abs(f2) <= S(1e4) * eps * gradient.norm() && upward) return x;
         break;
       }
+      const S ratio = length / previous;
+      if (previous > S(0) && length <= S(1e-6) * size && ratio <= S(1e-3) &&
+          length * ratio * ratio <= threshold && upward) {
+        return x;
+      }
+      previous = shortened == S(1) ? length : S(0);
     }
     return std::nullopt;
   };
   if (warm != nullptr) {
-    if (const std::optional<Vector3<S>> x = newton(*warm)) return *x;
+    if (const std::optional<Vector3<S>> x = newton(*warm, true)) {
+      exact = true;
+      return *x;
+    }
   }
+  Vector3<S> p_lo = body.support(u);
+  S g_lo = p_lo.dot(m) - c;
+  exact = g_lo < S(0);
+  if (!exact) return p_lo;
   if (body.gauge(deepest, value, gradient, hessian)) {
     // The ray's exit: Newton on G(o + r·u) = 1 from beyond the body, where G is convex along
     // the ray and the iterates fall to its exit. o, the deepest point taken back along m to
@@ -108,7 +129,7 @@ Vector3<S> capExtreme(const RegionBody<S>& body, const Vector3<S>& u, const Vect
       r -= step;
       if (std::abs(step) <= S(64) * eps * size) {
         if (r > S(0)) {
-          if (const std::optional<Vector3<S>> x = newton(Vector3<S>(o + r * u))) return *x;
+          if (const std::optional<Vector3<S>> x = newton(Vector3<S>(o + r * u), false)) return *x;
         }
         break;
       }
