@@ -488,12 +488,14 @@ ContactManifold<S> regionOfPieces(const RegionBody<S>& a,
       if (!(cross2(Vector2<S>(y1 - y0), Vector2<S>(-y0)) < S(0))) continue;  // origin inside
       const Vector3<S> along = plane.at(y1) - plane.at(y0);
       // The slope is ≥ 0 left of the deepest place and ≤ 0 right of it.
+      // (A place whose lines miss both bodies ends the bisection; the last one found stands.)
       S lo = S(0), hi = S(1);
       std::optional<RimPlace> last;
       for (int it = 0; it < 64 && (hi - lo) * (y1 - y0).norm() > merge; ++it) {
         const S t = S(0.5) * (lo + hi);
-        last = placeOnRim(Vector2<S>(y0 + t * (y1 - y0)), along);
-        if (!last) break;
+        const std::optional<RimPlace> at = placeOnRim(Vector2<S>(y0 + t * (y1 - y0)), along);
+        if (!at) break;
+        last = at;
         if (last->slope > S(0)) {
           lo = t;
         } else {
