@@ -29,15 +29,20 @@ Vector3<S> sphereDirection(int i, int n) {
   return Vector3<S>(S(r * std::cos(golden * i)), S(r * std::sin(golden * i)), S(z));
 }
 
-/// The witnesses at Newton's last direction v, moved to first order to where they are at the
-/// minimiser v* = v + δ: a = ∇h_A(v) and b = ∇h_B(−v) move by H_A·δ and −H_B·δ (H the support
-/// functions' Hessians), and at v* their difference is along v*, so δ solves
-/// P(H_A + H_B)P·δ = −P(a − b) in the tangent plane (P its projector). Newton stops within
-/// 1e-9 rad of v*, but beside a nearly flat face (a box-like superellipsoid's face centre, where
-/// the support function's Hessian, the radius of curvature, grows without bound) a support
-/// point moves by that much times the radius: the witnesses' difference was 3e-5 off the normal
-/// on one such pair, which the distance does not see (F is flat at its minimum) and the
-/// gradient's rotation parts do (pair_derivatives.h). The distance and the normal are kept.
+/// The witnesses at Newton's last direction v. The support points a = ∇h_A(v), b = ∇h_B(−v) are
+/// on their surfaces, but their difference is along v only at the minimiser v* = v + δ; to first
+/// order they move there by H_A·δ and −H_B·δ (H the support functions' Hessians), with δ solving
+/// P(H_A + H_B)P·δ = −P(a − b) in the tangent plane (P its projector). Newton stops near v*, but
+/// beside a nearly flat face (a box-like superellipsoid's face centre, where the Hessian, the
+/// radius of curvature, grows without bound) a support point moves by that distance times the
+/// radius: 1e-13 rad moves a support point metres across a 40 m floor's face, and the first-order
+/// move, which a face's slight curvature makes wrong by as much, leaves the pair where the faces
+/// are farther apart than the distance. So the better-determined witness (the smaller move) stays
+/// where its support point is, and the other is put on its body's surface along v through it:
+/// their difference is along v, and their gap is the distance to second order in the kept
+/// witness's move. Without this the difference was 3e-5 off the normal on one box-like pair,
+/// which the distance does not see (F is flat at its minimum) and the gradient's rotation parts
+/// do (pair_derivatives.h). The distance and the normal are kept.
 template <typename S>
 void consistentWitnesses(const SupportMap<S>& A, const SupportMap<S>& B, const Probe<S>& p,
                          Vector3<S>& on_a, Vector3<S>& on_b) {
@@ -54,10 +59,15 @@ void consistentWitnesses(const SupportMap<S>& A, const SupportMap<S>& B, const P
   const S x1 = -(k22 * g1 - k12 * g2) / det, x2 = -(k11 * g2 - k12 * g1) / det;
   if (!(det > S(0)) || !std::isfinite(x1) || !std::isfinite(x2)) return;
   const Vector3<S> delta = x1 * t1 + x2 * t2;
-  const Vector3<S> a = ea.point + ea.hessian * delta, b = eb.point - eb.hessian * delta;
-  if (!a.allFinite() || !b.allFinite()) return;
-  on_a = a;
-  on_b = b;
+  const S move_a = (ea.hessian * delta).squaredNorm(), move_b = (eb.hessian * delta).squaredNorm();
+  if (!std::isfinite(move_a) || !std::isfinite(move_b)) return;
+  // a − b = F(v)·v at the minimiser (F = h_A(v) + h_B(−v) = v·(a − b) there).
+  const S f = p.v.dot(gap);
+  if (move_b <= move_a) {
+    on_a = A.ontoSurfaceAlong(Vector3<S>(on_b + f * p.v), p.v);
+  } else {
+    on_b = B.ontoSurfaceAlong(Vector3<S>(on_a - f * p.v), Vector3<S>(-p.v));
+  }
 }
 
 }  // namespace

@@ -34,7 +34,10 @@ template <typename S>
 class SupportMap {
  public:
   SupportMap(const Superellipsoid<S>& shape, const fcl::Transform3<S>& X)
-      : kind_(Kind::kSuperellipsoid), norm_(NestedNorm<S>::support(shape)), X_(X) {}
+      : kind_(Kind::kSuperellipsoid),
+        norm_(NestedNorm<S>::support(shape)),
+        gauge_(NestedNorm<S>::gauge(shape)),
+        X_(X) {}
   SupportMap(const fcl::Ellipsoid<S>& shape, const fcl::Transform3<S>& X)
       : kind_(Kind::kEllipsoid), radii_(shape.radii), X_(X) {}
   SupportMap(const fcl::Sphere<S>& shape, const fcl::Transform3<S>& X)
@@ -107,6 +110,37 @@ class SupportMap {
 
   /// The support point only.
   Vector3<S> point(const Vector3<S>& v) const { return evaluate(v, false).point; }
+
+  /// The point x + s·d (d unit) on the surface nearest to x along the line, for x within a
+  /// small fraction of the size of the surface: Newton on the gauge, G(x + s·d) = 1, from s = 0.
+  /// x itself where that does not converge in a few steps, and for a point or a circle (no
+  /// gauge): the smooth pair's witness beside a flat face (smooth_pair.cpp).
+  Vector3<S> ontoSurfaceAlong(const Vector3<S>& x, const Vector3<S>& d) const {
+    if (kind_ == Kind::kEllipsoid && !(radii_.minCoeff() > S(0))) return x;
+    const Vector3<S> q0 = X_.linear().transpose() * (x - X_.translation());
+    const Vector3<S> m = X_.linear().transpose() * d;
+    const S eps = std::numeric_limits<S>::epsilon();
+    S s = S(0);
+    for (int it = 0; it < 4; ++it) {
+      const Vector3<S> q = q0 + s * m;
+      S value;
+      Vector3<S> gradient;
+      if (kind_ == Kind::kSuperellipsoid) {
+        const NestedNormEval<S> e = gauge_.evaluate(q.cwiseAbs(), false);
+        value = e.value;
+        gradient = intoOctantOf(q, e.gradient);
+      } else {
+        const Vector3<S> r = q.cwiseQuotient(radii_);
+        value = r.norm();
+        gradient = r.cwiseQuotient(radii_) / value;
+      }
+      const S slope = gradient.dot(m);
+      if (!std::isfinite(value) || !(slope > S(0))) return x;
+      if (std::abs(value - S(1)) <= S(4) * eps) return X_ * q;
+      s -= (value - S(1)) / slope;
+    }
+    return x;
+  }
   const Vector3<S> centre() const { return X_.translation(); }
   const fcl::Transform3<S>& pose() const { return X_; }
 
@@ -114,7 +148,8 @@ class SupportMap {
   enum class Kind { kSuperellipsoid, kEllipsoid };
   SupportMap(Kind kind, const fcl::Transform3<S>& X) : kind_(kind), X_(X) {}
   Kind kind_;
-  NestedNorm<S> norm_{};
+  NestedNorm<S> norm_{};   // the support function
+  NestedNorm<S> gauge_{};  // the primal gauge
   Vector3<S> radii_ = Vector3<S>::Zero();
   fcl::Transform3<S> X_;
 };
