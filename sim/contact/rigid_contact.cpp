@@ -100,6 +100,7 @@ struct RigidContactFinder::Impl {
   std::vector<fcl::TriangleP<double>> triangles;  ///< the bowl's, world frame
   std::vector<Eigen::Matrix3Xd> mesh_vertices;    ///< per body, body frame (vertex models)
   std::vector<Eigen::Matrix3Xd> world_vertices;   ///< per body, this step
+  std::vector<SupportBound> support_bounds;       ///< per body (the bowl's faces' cull)
   std::unique_ptr<tbb::task_arena> arena;
   fse::BatchOptions<double> exact_options, model_options;
   std::unique_ptr<RigidMeshContact> meshes;  ///< the mesh model's BVHs
@@ -310,7 +311,7 @@ struct RigidContactFinder::Impl {
     grid.query(a.x.array() - reach, a.x.array() + reach, near_vertices, near_triangles);
     const fcl::Transform3d X = a.transform();
     if (!near_vertices.empty()) bowlVertexContacts(a, i, X, near_vertices, margin, out);
-    const SupportBound support_bound(*a.shape);
+    const SupportBound& support_bound = support_bounds[std::size_t(i)];
     for (int t : near_triangles) bowlFaceContact(a, i, X, support_bound, t, margin, out);
   }
 
@@ -497,6 +498,7 @@ RigidContactFinder::RigidContactFinder(const std::vector<RigidBody>& bodies, con
   impl_->bowl = bowl;
   if (bowl != nullptr) {
     impl_->grid = MeshGrid(*bowl);
+    for (const RigidBody& body : bodies) impl_->support_bounds.emplace_back(*body.shape);
     for (const auto& t : bowl->triangles) {
       impl_->triangles.emplace_back(bowl->vertices.col(t[0]), bowl->vertices.col(t[1]),
                                     bowl->vertices.col(t[2]));

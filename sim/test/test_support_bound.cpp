@@ -1,8 +1,9 @@
 // The power-free bound of a superellipsoid's support function (contact/support_bound.h), which
 // culls the bowl's faces: never below the support function (so it culls only faces the support
-// point would), exact for an ellipsoid, and no looser than the bounding box's Σ aᵢ|dᵢ|, which it
-// replaces. The truth is the support function's closed form in long double, the nested dual
-// norm ‖(‖(a1·d1, a2·d2)‖_q1, a3·d3)‖_q2 with q = 2/(2 − ε).
+// point would), exact for an ellipsoid, no looser than the bounding box's Σ aᵢ|dᵢ|, which it
+// replaced, and within its tables' cells of the support function. The truth is the support
+// function's closed form in long double, the nested dual norm ‖(‖(a1·d1, a2·d2)‖_q1, a3·d3)‖_q2
+// with q = 2/(2 − ε).
 
 #include <gtest/gtest.h>
 
@@ -58,6 +59,25 @@ TEST(SupportBound, ExactForAnEllipsoid) {
   for (int k = 0; k < 200; ++k) {
     const Eigen::Vector3d d(unit(rng), unit(rng), unit(rng));
     EXPECT_NEAR(bound(d), double(support(shape, d)), 1e-14 * shape.size()) << d.transpose();
+  }
+}
+
+// Each level's table of (1 + t^q)^(1/q) (a slope of at most 1, 64 cells) is within 1/64 of the
+// larger argument of the level's norm, and the outer level adds the inner one's excess at most:
+// the bound is within 2/64 of Σ aᵢ|dᵢ| of the support function, for every exponent.
+TEST(SupportBound, WithinItsTablesCellOfTheSupportFunction) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> radius(0.2, 2.0), unit(-1, 1), exponent(0.05, 1.95);
+  for (int s = 0; s < 60; ++s) {
+    const fse::Superellipsoidd shape(radius(rng), radius(rng), radius(rng), exponent(rng),
+                                     exponent(rng));
+    const SupportBound bound(shape);
+    for (int k = 0; k < 300; ++k) {
+      const Eigen::Vector3d d(unit(rng), unit(rng), unit(rng));
+      const long double h = support(shape, d);
+      EXPECT_LE(bound(d) - double(h), 2.0 / 64 * shape.radii().dot(d.cwiseAbs()))
+          << "ε = (" << shape.eps1() << ", " << shape.eps2() << "), d = " << d.transpose();
+    }
   }
 }
 
