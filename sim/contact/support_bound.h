@@ -59,8 +59,8 @@ class SupportBound {
       const double cell = std::ceil(t * kCells);
       return std::min(power_free, m * g[std::size_t(std::min<double>(cell, kCells))]);
     }
-    bool round;     // ε ≥ 1: the 2-norm bounds the q-norm
-    double factor;  // 2^((1 − ε)/2), for ε < 1
+    bool round;                        // ε ≥ 1: the 2-norm bounds the q-norm
+    double factor;                     // 2^((1 − ε)/2), for ε < 1
     std::array<double, kCells + 1> g;  // g(k/kCells), rounded up
   };
   Eigen::Vector3d radii_;
